@@ -1,0 +1,169 @@
+#include "cli/df_command.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/progress_bar.hpp"
+#include "cli/reports.hpp"
+#include "cli/staged_output.hpp"
+#include "geometry/error.hpp"
+#include "geometry/visibility.hpp"
+#include "sky/sky_component.hpp"
+
+namespace daylit::cli {
+
+namespace {
+
+struct DfOptions {
+  std::vector<std::string> scene_files, aperture_files, grid_files;
+  std::string sky = "cie-overcast";
+  std::string geometry = "exact";
+  std::string out, summary, image;
+  int threads = 0;
+  bool quiet = false;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json counters_json(const VisibilityCounters& c) {
+  return {
+      {"sensor_aperture_pairs", c.pairs},
+      {"pairs_not_facing", c.pairs_not_facing},
+      {"pairs_without_exact_clipping", c.pairs_unobstructed + c.pairs_not_facing},
+      {"pairs_unobstructed", c.pairs_unobstructed},
+      {"pairs_clipped", c.pairs_clipped},
+      {"occluder_pieces_culled_by_boxes", c.occluders_box_culled},
+      {"occluder_pieces_tested_exactly", c.occluders_tested},
+      {"occluder_pieces_clipped", c.occluders_clipped},
+  };
+}
+
+// Image path for grid g: the given path itself for one grid, else with the grid name inserted.
+std::string image_path_for(const std::string& image, const std::string& grid_name, std::size_t grid_count) {
+  if (grid_count == 1) return image;
+  const std::filesystem::path p(image);
+  return (p.parent_path() / (p.stem().string() + "-" + grid_name + p.extension().string())).string();
+}
+
+int run_df(const DfOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SkyModel sky = parse_sky_model(opt.sky);
+  const GeometryMode mode = opt.geometry == "float" ? GeometryMode::floating : GeometryMode::exact;
+  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+
+  const Scene scene = load_scene(opt.scene_files, opt.aperture_files);
+  if (scene.apertures.empty())
+    throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
+  std::vector<SensorGrid> grids;
+  for (const auto& f : opt.grid_files) grids.push_back(read_sensor_grid(f));
+  if (!opt.quiet)
+    for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
+
+  const VisibilityEngine engine(scene, mode);
+  const bool show_progress = !opt.quiet && stderr_is_terminal();
+
+  std::vector<GridReport> reports;
+  for (const auto& grid : grids) {
+    const auto tg = std::chrono::steady_clock::now();
+    ProgressBar bar("df " + grid.name, grid.sensors.size(), show_progress);
+    SkyComponentResult sc = sky_component(engine, scene, grid, sky, [&](std::size_t done) { bar.update(done); });
+    GridReport r;
+    r.grid = &grid;
+    r.sc_percent = sc.sc_percent;
+    r.df_percent = std::move(sc.sc_percent);  // DF = SC: the components computed in this run
+    r.statistics = grid_statistics(r.df_percent);
+    r.counters = sc.counters;
+    r.run_time_s = seconds_since(tg);
+    reports.push_back(std::move(r));
+  }
+
+  StagedOutputs outputs;
+  if (!opt.out.empty()) {
+    write_csv(outputs.stage(opt.out), reports);
+  }
+  if (!opt.image.empty())
+    for (const auto& r : reports) write_falsecolour_image(outputs.stage(image_path_for(opt.image, r.grid->name, reports.size())), r);
+
+  nlohmann::json summary;
+  summary["sky"] = std::string(sky_model_name(sky));
+  summary["geometry"] = mode == GeometryMode::exact ? "exact" : "float";
+  summary["threads"] = threads;
+  summary["components"] = {
+      {"computed", {"sc"}},
+      {"left_out",
+       {{"erc", "externally reflected component: not computed (obstructions are black)"},
+        {"irc", "internally reflected component: not computed (room surfaces are black)"}}},
+      {"df_percent_is", "sc_percent"}};
+  summary["scene"] = {{"occluders", scene.occluders.size()},
+                      {"occluder_pieces", engine.occluder_piece_count()},
+                      {"apertures", scene.apertures.size()},
+                      {"aperture_pieces", engine.aperture_piece_count()},
+                      {"notices", scene.notices}};
+  for (const auto& r : reports) {
+    const auto& s = r.statistics;
+    nlohmann::json shares;
+    for (std::size_t t = 0; t < s.share_at_or_above.size(); ++t)
+      shares[fmt::format("{:g}", GridStatistics::kThresholds[t])] = s.share_at_or_above[t];
+    summary["grids"].push_back({{"name", r.grid->name},
+                                {"path", r.grid->path},
+                                {"count", s.count},
+                                {"df_percent", {{"mean", s.mean}, {"median", s.median}, {"min", s.min}, {"max", s.max}}},
+                                {"uniformity", {{"min_over_mean", s.min_over_mean}, {"min_over_median", s.min_over_median}}},
+                                {"share_at_or_above_df_percent", shares},
+                                {"run_time_s", r.run_time_s},
+                                {"left_out", counters_json(r.counters)}});
+  }
+  summary["run_time_s"] = seconds_since(t0);
+  if (!opt.summary.empty()) {
+    std::ofstream f(outputs.stage(opt.summary));
+    f << summary.dump(2) << '\n';
+    if (!f) throw Error(opt.summary + ": cannot write summary");
+  }
+  outputs.commit();
+  if (opt.out.empty()) write_csv(stdout, reports);
+  if (!opt.quiet)
+    for (const auto& r : reports)
+      std::cerr << fmt::format("{}: {} sensors, mean DF {:.3f} %, median {:.3f} %, min {:.3f} %, max {:.3f} % ({:.2f} s)\n",
+                               r.grid->name, r.statistics.count, r.statistics.mean, r.statistics.median,
+                               r.statistics.min, r.statistics.max, r.run_time_s);
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_df_command(CLI::App& app) {
+  auto opt = std::make_shared<DfOptions>();
+  CLI::App* df = app.add_subcommand("df", "Daylight factors on sensor grids (sky component, exact)");
+  df->description(
+      "Computes the daylight factor at every sensor of the grids under a CIE overcast (or uniform) sky.\n"
+      "Each aperture is clipped exactly against the occluders as seen from each sensor, and the sky is\n"
+      "integrated over what stays visible in closed form: no rays, no noise. Reported: the sky component\n"
+      "(SC); externally and internally reflected components are not computed yet, so DF = SC.");
+  df->add_option("--scene", opt->scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
+      ->check(CLI::ExistingFile);
+  df->add_option("--apertures", opt->aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
+  df->add_option("--grid", opt->grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
+      ->check(CLI::IsMember({"cie-overcast", "uniform"}));
+  df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
+  df->add_option("--summary", opt->summary, "JSON file for per-grid statistics and what was left out");
+  df->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
+  df->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default) or float (for comparison)")
+      ->check(CLI::IsMember({"exact", "float"}));
+  df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
+  return [opt] { return run_df(*opt); };
+}
+
+}  // namespace daylit::cli

@@ -1,0 +1,31 @@
+// daylit: exact daylight factors and illuminance in building models.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "cli/df_command.hpp"
+#include "geometry/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app("daylit: exact daylight factors. Windows are clipped against the geometry in exact\n"
+               "arithmetic and the sky is integrated over what stays visible in closed form.");
+  app.require_subcommand(1);
+  auto run_df = daylit::cli::add_df_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("df")) return run_df();
+  } catch (const daylit::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,180 @@
+#include "geometry/convex_pieces.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <cmath>
+#include <list>
+#include <map>
+#include <numbers>
+
+namespace daylit {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point2 = K::Point_2;
+using Point3 = K::Point_3;
+
+struct FaceInfo {
+  int nesting_level = -1;
+  bool inside() const { return nesting_level % 2 == 1; }
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, K>;
+using Fbb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbb>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Constraints may touch at vertices (seams), never cross: a crossing is a self-intersection.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+int dominant_axis(const Vec3& n) {
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+}
+
+Point2 drop(const Vec3& v, int k) { return {v[(k + 1) % 3], v[(k + 2) % 3]}; }
+Point3 point3(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Base triple (0, b, c) of largest area, so that the plane it spans is well conditioned.
+std::pair<int, int> base_triple(const std::vector<Vec3>& v) {
+  double best = -1;
+  std::pair<int, int> bc{1, 2};
+  for (std::size_t b = 1; b + 1 < v.size(); ++b)
+    for (std::size_t c = b + 1; c < v.size(); ++c) {
+      const double a = norm(cross(v[b] - v[0], v[c] - v[0]));
+      if (a > best) best = a, bc = {int(b), int(c)};
+    }
+  return bc;
+}
+
+bool exactly_planar(const std::vector<Vec3>& v, int b, int c) {
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (CGAL::orientation(point3(v[0]), point3(v[b]), point3(v[c]), point3(v[i])) != CGAL::COPLANAR) return false;
+  return true;
+}
+
+// Convex in the 2D projection: all turns of one sign (collinear ones allowed) and one winding.
+bool convex_in_projection(const std::vector<Vec3>& v, int k) {
+  const std::size_t m = v.size();
+  int sign = 0;
+  double turning = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Point2 a = drop(v[i], k), b = drop(v[(i + 1) % m], k), c = drop(v[(i + 2) % m], k);
+    const int o = int(CGAL::orientation(a, b, c));
+    if (o != 0) {
+      if (sign != 0 && o != sign) return false;
+      sign = o;
+    }
+    const double e1x = b.x() - a.x(), e1y = b.y() - a.y(), e2x = c.x() - b.x(), e2y = c.y() - b.y();
+    turning += std::atan2(e1x * e2y - e1y * e2x, e1x * e2x + e1y * e2y);
+  }
+  return sign != 0 && std::abs(std::abs(turning) - 2 * std::numbers::pi) < 1.0;
+}
+
+ConvexPiece make_piece(std::vector<Vec3> vertices, int k, std::size_t source) {
+  ConvexPiece piece;
+  const auto [b, c] = base_triple(vertices);
+  if (CGAL::orientation(drop(vertices[0], k), drop(vertices[b], k), drop(vertices[c], k)) == CGAL::CLOCKWISE) {
+    std::reverse(vertices.begin() + 1, vertices.end());
+    piece.base_b = int(vertices.size()) - c;
+    piece.base_c = int(vertices.size()) - b;
+  } else {
+    piece.base_b = b;
+    piece.base_c = c;
+  }
+  piece.vertices = std::move(vertices);
+  piece.drop_axis = k;
+  piece.source = source;
+  return piece;
+}
+
+void mark_domains(Cdt& cdt, Cdt::Face_handle start, int level, std::list<Cdt::Edge>& border) {
+  if (start->info().nesting_level != -1) return;
+  std::list<Cdt::Face_handle> queue{start};
+  while (!queue.empty()) {
+    const Cdt::Face_handle fh = queue.front();
+    queue.pop_front();
+    if (fh->info().nesting_level != -1) continue;
+    fh->info().nesting_level = level;
+    for (int i = 0; i < 3; ++i) {
+      const Cdt::Face_handle n = fh->neighbor(i);
+      if (n->info().nesting_level != -1) continue;
+      if (cdt.is_constrained(Cdt::Edge(fh, i)))
+        border.emplace_back(fh, i);
+      else
+        queue.push_back(n);
+    }
+  }
+}
+
+std::vector<ConvexPiece> triangulate(const Polygon& polygon, int k, std::size_t source) {
+  const auto& v = polygon.vertices;
+  const std::size_t m = v.size();
+  // Edges traversed in both directions are seams: they bound nothing and cancel.
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  std::map<std::pair<double, double>, std::size_t> index_of;  // projected point → first vertex
+  std::vector<std::size_t> id(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const Point2 p = drop(v[i], k);
+    id[i] = index_of.try_emplace({p.x(), p.y()}, i).first->second;
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t a = id[i], b = id[(i + 1) % m];
+    if (a == b) continue;
+    auto reverse = directed.find({b, a});
+    if (reverse != directed.end() && reverse->second > 0)
+      --reverse->second;
+    else
+      ++directed[{a, b}];
+  }
+  Cdt cdt;
+  std::map<std::size_t, Cdt::Vertex_handle> handle;
+  for (const auto& [p, i] : index_of) {
+    auto vh = cdt.insert(Point2(p.first, p.second));
+    vh->info() = i;
+    handle[i] = vh;
+  }
+  try {
+    for (const auto& [edge, count] : directed)
+      if (count > 0) cdt.insert_constraint(handle[edge.first], handle[edge.second]);
+  } catch (const Cdt::Intersection_of_constraints_exception&) {
+    throw input_error(polygon.where, "polygon '" + polygon.name + "' intersects itself");
+  }
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info().nesting_level = -1;
+  std::list<Cdt::Edge> border;
+  mark_domains(cdt, cdt.infinite_face(), 0, border);
+  while (!border.empty()) {
+    const Cdt::Edge e = border.front();
+    border.pop_front();
+    const Cdt::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting_level == -1) mark_domains(cdt, n, e.first->info().nesting_level + 1, border);
+  }
+  std::vector<ConvexPiece> pieces;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->info().inside()) continue;
+    pieces.push_back(make_piece({v[f->vertex(0)->info()], v[f->vertex(1)->info()], v[f->vertex(2)->info()]}, k, source));
+  }
+  if (pieces.empty()) throw input_error(polygon.where, "polygon '" + polygon.name + "' encloses no area");
+  return pieces;
+}
+
+}  // namespace
+
+std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t source) {
+  const auto& v = polygon.vertices;
+  const int k = dominant_axis(newell_normal(v));
+  const auto [b, c] = base_triple(v);
+  if (convex_in_projection(v, k)) {
+    if (exactly_planar(v, b, c)) return {make_piece(v, k, source)};
+    std::vector<ConvexPiece> fan;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i)
+      if (CGAL::orientation(drop(v[0], k), drop(v[i], k), drop(v[i + 1], k)) != CGAL::COLLINEAR)
+        fan.push_back(make_piece({v[0], v[i], v[i + 1]}, k, source));
+    return fan;
+  }
+  return triangulate(polygon, k, source);
+}
+
+}  // namespace daylit

@@ -1,0 +1,56 @@
+#pragma once
+// Reader for Radiance scene descriptions (.rad): the subset a daylighting model needs.
+//
+// A primitive is "modifier type identifier", then three argument lists, each preceded by its
+// count: strings, integers, reals. '#' starts a comment that runs to the end of the line.
+// Geometry: `polygon` only. Materials are kept by type (plastic, metal, trans, glass, mirror,
+// glow, light; `alias` for renaming); `void` is the null modifier. Sky and light-source
+// primitives (`source`, and the `brightfunc`/`colorfunc` patterns a sky is made of) are skipped
+// with a notice, since the sky comes from the command line. `!command` lines and every other
+// primitive are an error naming the file and line.
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "geometry/polygon.hpp"
+
+namespace daylit {
+
+struct Material {
+  std::string name;
+  std::string type;
+  std::vector<std::string> strings;
+  std::vector<double> reals;
+  SourceLocation where;
+};
+
+// Everything read from one or more .rad files, in order. Material definitions accumulate across
+// files, as with Radiance's oconv.
+struct RadContent {
+  std::map<std::string, Material> materials;
+  struct Entry {
+    Polygon polygon;
+    bool from_aperture_file = false;
+  };
+  std::vector<Entry> polygons;
+  std::vector<std::string> notices;
+  // Names of skipped sky patterns and sources: materials may still name them as modifiers.
+  std::set<std::string> skipped_modifiers;
+};
+
+// Planarity tolerance for polygons: the largest distance of a vertex from the polygon's mean
+// plane, relative to the polygon's extent. Beyond it a polygon is rejected (CAD exports in single
+// precision sit near 1e-7; a visibly warped quad is well above 1e-4).
+inline constexpr double kPlanarityTolerance = 1e-4;
+
+// Reads `path` and appends its content. Throws daylit::Error with file:line on bad input.
+void read_rad_file(const std::string& path, bool aperture_file, RadContent& content);
+
+// The same for text already in memory; `name` is used in messages.
+void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
+                   RadContent& content);
+
+}  // namespace daylit

@@ -1,0 +1,81 @@
+#include "geometry/scene.hpp"
+
+#include <cstdio>
+
+namespace daylit {
+
+namespace {
+
+constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
+
+double luminance(const std::vector<double>& reals) {
+  return kLuminanceWeights[0] * reals[0] + kLuminanceWeights[1] * reals[1] + kLuminanceWeights[2] * reals[2];
+}
+
+std::string format_fraction(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", x);
+  return buf;
+}
+
+}  // namespace
+
+double glass_normal_transmittance(const Material& glass) {
+  const double n = glass.reals.size() > 3 ? glass.reals[3] : 1.52;
+  const double r = ((n - 1) / (n + 1)) * ((n - 1) / (n + 1));
+  double total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double t = glass.reals[c];
+    total += kLuminanceWeights[c] * t * (1 - r) * (1 - r) / (1 - r * r * t * t);
+  }
+  return total;
+}
+
+Scene assemble_scene(const RadContent& content) {
+  Scene scene;
+  scene.notices = content.notices;
+  std::vector<std::string> described;
+  auto describe_once = [&](const Material& m, const std::string& text) {
+    for (const auto& d : described)
+      if (d == m.name) return;
+    described.push_back(m.name);
+    scene.notices.push_back(text);
+  };
+  for (const auto& entry : content.polygons) {
+    const Polygon& poly = entry.polygon;
+    const auto it = content.materials.find(poly.material);
+    const Material* material = it == content.materials.end() ? nullptr : &it->second;
+    const std::string type = material ? material->type : "void";
+    if (type == "glass") {
+      const double t = glass_normal_transmittance(*material);
+      describe_once(*material, "glass '" + material->name + "': normal-incidence transmittance " + format_fraction(t) +
+                                   ", applied at every angle of incidence");
+      scene.apertures.push_back({poly, t});
+    } else if (entry.from_aperture_file) {
+      if (type == "void") {
+        scene.apertures.push_back({poly, 1.0});
+      } else if (type == "trans") {
+        const auto& a = material->reals;
+        const double t = (1 - a[3]) * a[5] * luminance(a);
+        describe_once(*material, "trans '" + material->name + "': transmittance " + format_fraction(t) +
+                                     ", its diffuse part treated as clear");
+        scene.apertures.push_back({poly, t});
+      } else {
+        throw input_error(poly.where, "aperture '" + poly.name + "' has material '" + poly.material + "' of type " +
+                                          type + "; apertures must be void, glass or trans");
+      }
+    } else {
+      scene.occluders.push_back(poly);
+    }
+  }
+  return scene;
+}
+
+Scene load_scene(const std::vector<std::string>& scene_files, const std::vector<std::string>& aperture_files) {
+  RadContent content;
+  for (const auto& f : scene_files) read_rad_file(f, false, content);
+  for (const auto& f : aperture_files) read_rad_file(f, true, content);
+  return assemble_scene(content);
+}
+
+}  // namespace daylit

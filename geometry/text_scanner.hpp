@@ -1,0 +1,106 @@
+#pragma once
+// Whitespace-separated tokens with line numbers and '#' comments, and strict number parsing:
+// shared by the .rad and .pts readers so that both reject bad input the same way.
+
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "geometry/error.hpp"
+
+namespace daylit {
+
+struct Token {
+  std::string_view text;
+  int line = 0;
+};
+
+class TextScanner {
+ public:
+  TextScanner(std::string_view text, std::string file) : text_(text), file_(std::move(file)) {}
+
+  // Next token, or an empty token at the end of the text. Comments run from '#' to end of line.
+  Token next() {
+    skip_blank();
+    const std::size_t begin = pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
+    return {text_.substr(begin, pos_ - begin), line_};
+  }
+
+  // Position of the next token without consuming it (the line it starts on, 0 at the end).
+  int peek_line() {
+    skip_blank();
+    return pos_ < text_.size() ? line_ : 0;
+  }
+
+  bool at_end() {
+    skip_blank();
+    return pos_ >= text_.size();
+  }
+
+  // The rest of the current line (for error messages about `!command` lines).
+  std::string_view rest_of_line() const {
+    const std::size_t end = text_.find('\n', pos_);
+    return text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_);
+  }
+
+  SourceLocation where(int line) const { return {file_, line}; }
+  const std::string& file() const { return file_; }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+  void skip_blank() {
+    while (pos_ < text_.size()) {
+      const char c = text_[pos_];
+      if (c == '\n') {
+        ++line_;
+        ++pos_;
+      } else if (is_space(c)) {
+        ++pos_;
+      } else if (c == '#') {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+      } else {
+        break;
+      }
+    }
+  }
+
+  std::string_view text_;
+  std::string file_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
+// A finite real number, or an error naming the place and the offending text.
+inline double parse_real(const Token& t, const SourceLocation& where, std::string_view what) {
+  std::string_view s = t.text;
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double value = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (t.text.empty()) throw input_error(where, "unexpected end of file, expected " + std::string(what));
+  if (ec == std::errc::result_out_of_range)
+    throw input_error(where, "number '" + std::string(t.text) + "' is out of range for " + std::string(what));
+  if (ec != std::errc() || end != s.data() + s.size())
+    throw input_error(where, "expected a number for " + std::string(what) + ", found '" + std::string(t.text) + "'");
+  if (!std::isfinite(value))
+    throw input_error(where, "non-finite number '" + std::string(t.text) + "' for " + std::string(what));
+  return value;
+}
+
+// A non-negative integer count, or an error.
+inline long parse_count(const Token& t, const SourceLocation& where, std::string_view what) {
+  long value = 0;
+  const auto [end, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), value);
+  if (t.text.empty()) throw input_error(where, "unexpected end of file, expected " + std::string(what));
+  if (ec != std::errc() || end != t.text.data() + t.text.size() || value < 0)
+    throw input_error(where, "expected a non-negative integer for " + std::string(what) + ", found '" +
+                                 std::string(t.text) + "'");
+  return value;
+}
+
+// Reads a whole file; an error names it if it cannot be opened.
+std::string read_text_file(const std::string& path);
+
+}  // namespace daylit

@@ -1,0 +1,66 @@
+#pragma once
+// Exact visible regions of apertures seen from receivers (DESIGN.md §2). The interface is plain:
+// doubles in, loops of direction vectors out; CGAL stays inside visibility.cpp.
+
+#include <cstdint>
+#include <memory>
+
+#include "geometry/scene.hpp"
+#include "geometry/spherical_region.hpp"
+
+namespace daylit {
+
+enum class GeometryMode {
+  exact,     // filtered exact predicates, exact (lazy rational) constructions, correctly rounded output
+  floating,  // the same algorithm in double precision, for comparison
+};
+
+// What the visibility routine did and what it left out; summed over threads.
+struct VisibilityCounters {
+  std::uint64_t pairs = 0;               // sensor–aperture-piece pairs evaluated
+  std::uint64_t pairs_not_facing = 0;    // piece behind the receiver, below its horizon, or edge-on
+  std::uint64_t pairs_unobstructed = 0;  // no occluder survived culling: no exact construction at all
+  std::uint64_t pairs_clipped = 0;       // occluders clipped and subtracted (exact in exact mode)
+  std::uint64_t occluders_box_culled = 0;    // occluder pieces (or BVH subtrees' pieces) culled by boxes
+  std::uint64_t occluders_tested = 0;        // occluder pieces that reached the exact predicates
+  std::uint64_t occluders_clipped = 0;       // occluder pieces that survived and were clipped
+
+  VisibilityCounters& operator+=(const VisibilityCounters& o) {
+    pairs += o.pairs;
+    pairs_not_facing += o.pairs_not_facing;
+    pairs_unobstructed += o.pairs_unobstructed;
+    pairs_clipped += o.pairs_clipped;
+    occluders_box_culled += o.occluders_box_culled;
+    occluders_tested += o.occluders_tested;
+    occluders_clipped += o.occluders_clipped;
+    return *this;
+  }
+};
+
+class VisibilityEngine {
+ public:
+  // Splits apertures and occluders into convex pieces and builds the culling hierarchy.
+  // Throws daylit::Error for polygons that cross themselves.
+  VisibilityEngine(const Scene& scene, GeometryMode mode);
+  ~VisibilityEngine();
+  VisibilityEngine(VisibilityEngine&&) noexcept;
+  VisibilityEngine& operator=(VisibilityEngine&&) noexcept;
+
+  std::size_t aperture_count() const noexcept;
+  std::size_t occluder_piece_count() const noexcept;
+  std::size_t aperture_piece_count() const noexcept;
+  GeometryMode mode() const noexcept;
+
+  // The directions from receiver p (normal n, unit) that pass through aperture `aperture`, lie in
+  // front of the receiver's tangent plane and above the horizontal plane through p, and meet no
+  // occluder on the way (in front of or beyond the aperture). Returned as positively oriented
+  // loops (a partition of the region); empty when nothing is visible. Thread-safe.
+  SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
+                                 VisibilityCounters& counters) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace daylit

@@ -1,0 +1,32 @@
+#include "sky/sky_model.hpp"
+
+#include <numbers>
+
+#include "geometry/error.hpp"
+#include "illumination/moments.hpp"
+
+namespace daylit {
+
+SkyModel parse_sky_model(std::string_view name) {
+  if (name == "cie-overcast") return SkyModel::cie_overcast;
+  if (name == "uniform") return SkyModel::uniform;
+  throw Error("unknown sky '" + std::string(name) + "': use cie-overcast or uniform");
+}
+
+std::string_view sky_model_name(SkyModel sky) noexcept {
+  return sky == SkyModel::cie_overcast ? "cie-overcast" : "uniform";
+}
+
+double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky) {
+  if (region.empty()) return 0;
+  const double cosine = lambert(region, n);
+  if (sky == SkyModel::uniform) return cosine;
+  constexpr Vec3 zenith{0, 0, 1};
+  return (cosine + 2 * double_axis_moment(region, zenith, n, 1)) / 3;
+}
+
+double unobstructed_horizontal_irradiance(SkyModel sky) noexcept {
+  return sky == SkyModel::cie_overcast ? 7 * std::numbers::pi / 9 : std::numbers::pi;
+}
+
+}  // namespace daylit

@@ -1,0 +1,32 @@
+#pragma once
+// Sky luminance models that are polynomials in the direction u, so that their sky components are
+// closed forms over the exact visible regions.
+
+#include <string>
+#include <string_view>
+
+#include "geometry/spherical_region.hpp"
+
+namespace daylit {
+
+enum class SkyModel {
+  cie_overcast,  // Moon–Spencer: L(u) = L_z (1 + 2 u_z)/3, the "16th" sky of ISO 15469:2004 / CIE S 011/E:2003
+  uniform,       // L(u) = L
+};
+
+// Parses "cie-overcast" or "uniform"; throws daylit::Error otherwise.
+SkyModel parse_sky_model(std::string_view name);
+std::string_view sky_model_name(SkyModel sky) noexcept;
+
+// Illuminance (per unit zenith luminance L_z for the overcast sky, per unit luminance for the
+// uniform sky) on a receiver with unit normal n from the sky seen in `region`. The region must lie
+// above the horizon and in front of the receiver (as returned by the visibility routine).
+// Overcast: E/L_z = (1/3) [∫_A (n·u) dσ + 2 ∫_A (z·u)(n·u) dσ] (DESIGN.md §3), exact: a Lambert
+// term and one double-axis moment of order 1 (Arvo 1995, eq. 14). Uniform: E/L = ∫_A (n·u) dσ.
+double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky);
+
+// Unobstructed horizontal illuminance in the same units: 7π/9 for the overcast sky, π for the
+// uniform sky (SKY.md).
+double unobstructed_horizontal_irradiance(SkyModel sky) noexcept;
+
+}  // namespace daylit
