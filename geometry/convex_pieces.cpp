@@ -164,7 +164,9 @@ std::vector<ConvexPiece> triangulate(const Polygon& polygon, int k, std::size_t 
 
 std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t source) {
   const auto& v = polygon.vertices;
-  const int k = dominant_axis(newell_normal(v));
+  const Vec3 normal = newell_normal(v);
+  if (!(norm(normal) > 0)) throw input_error(polygon.where, "polygon '" + polygon.name + "' has zero area");
+  const int k = dominant_axis(normal);
   const auto [b, c] = base_triple(v);
   if (convex_in_projection(v, k)) {
     if (exactly_planar(v, b, c)) return {make_piece(v, k, source)};

@@ -95,21 +95,23 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     const long nstr = parse_count(scan.next(), where, "the number of string arguments");
     for (long i = 0; i < nstr; ++i) {
       const Token t = scan.next();
-      if (t.text.empty()) throw input_error(scan.where(t.line), "unexpected end of file in string arguments of '" + id + "'");
+      if (t.text.empty()) throw input_error(where, "unexpected end of file in the string arguments of '" + id + "'");
       strings.emplace_back(t.text);
     }
-    const long nint = parse_count(scan.next(), scan.where(scan.peek_line()), "the number of integer arguments");
+    const long nint = parse_count(scan.next(), where, "the number of integer arguments");
     for (long i = 0; i < nint; ++i) {
       const Token t = scan.next();
-      if (t.text.empty()) throw input_error(scan.where(t.line), "unexpected end of file in integer arguments of '" + id + "'");
+      if (t.text.empty()) throw input_error(where, "unexpected end of file in the integer arguments of '" + id + "'");
     }
-    const Token nreal_tok = scan.next();
-    const long nreal = parse_count(nreal_tok, scan.where(nreal_tok.line ? nreal_tok.line : line), "the number of real arguments");
+    const long nreal = parse_count(scan.next(), where, "the number of real arguments");
     std::vector<double> reals;
     reals.reserve(std::size_t(std::min<long>(nreal, 1 << 16)));
     for (long i = 0; i < nreal; ++i) {
       const Token t = scan.next();
-      reals.push_back(parse_real(t, scan.where(t.line ? t.line : line), "real argument " + std::to_string(i + 1) + " of '" + id + "'"));
+      if (t.text.empty())
+        throw input_error(where, "unexpected end of file in '" + id + "': " + std::to_string(nreal) +
+                                     " real arguments announced, " + std::to_string(i) + " found");
+      reals.push_back(parse_real(t, scan.where(t.line), "real argument " + std::to_string(i + 1) + " of '" + id + "'"));
     }
 
     const std::string modifier_name(modifier.text);

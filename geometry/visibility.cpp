@@ -291,16 +291,14 @@ struct VisibilityEngine::Impl {
       const Vec3& b = wv[(e + 1) % wv.size()];
       if (all([&](const Vec3& v) { return inside * Signs::orient3(p, a, b, v) <= 0; })) return false;
     }
-    // The receiver and the whole aperture on one closed side of the occluder's plane.
+    // Rays p + t(w − p), t > 0, never reach the occluder's plane from p's side when each moves
+    // away from it or parallel to it: sign(N_o·(w − p)) is that of N_o·(p − o0) or zero. (The
+    // rays go on beyond the aperture, so the aperture lying on p's side is not enough.) A plane
+    // through p itself casts a shadow of zero area.
     const Vec3 &o0 = ov[0], &ob = ov[o.base_b], &oc = ov[o.base_c];
     const int sp = Signs::orient3(o0, ob, oc, p);
-    bool any_pos = sp > 0, any_neg = sp < 0;
-    for (const Vec3& v : wv) {
-      const int s = Signs::orient3(o0, ob, oc, v);
-      any_pos |= s > 0;
-      any_neg |= s < 0;
-    }
-    return any_pos && any_neg;
+    if (sp == 0) return false;
+    return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, p) >= 0; });
   }
 
   template <class Signs>

@@ -1,55 +1,160 @@
 #include "illumination/moments.hpp"
 
+#include <algorithm>
+
 #include "illumination/arc_power_integral.hpp"
-#include "illumination/solid_angle.hpp"
 
 namespace daylit {
 
 namespace {
 
-// Calls f(edge) for every non-degenerate edge of every loop.
-template <class F>
+thread_local int last_precision = 0;
+
+// A sum that remembers the magnitude of what went into it, to detect cancellation.
+template <class R>
+struct Sum {
+  R value = 0, magnitude = 0;
+  void add(R term, R term_magnitude) {
+    value += term;
+    magnitude += term_magnitude;
+  }
+  void add(R term) { add(term, real::abs(term)); }
+};
+
+// Calls f(edge) for every non-degenerate edge of every loop, in precision R.
+template <class R, class F>
 void for_each_edge(const SphericalRegion& region, F&& f) {
   for (const auto& loop : region.loops) {
     const std::size_t m = loop.size();
     for (std::size_t i = 0; i < m; ++i)
-      if (const auto arc = arc_edge(loop[i], loop[(i + 1) % m])) f(*arc);
+      if (const auto arc = arc_edge(real::V3<R>(loop[i]), real::V3<R>(loop[(i + 1) % m]))) f(*arc);
   }
+}
+
+// Van Oosterom–Strackee (see solid_angle.hpp), fan from the first vertex of each loop.
+template <class R>
+Sum<R> solid_angle_sum(const SphericalRegion& region) {
+  Sum<R> sum;
+  for (const auto& loop : region.loops) {
+    if (loop.size() < 3) continue;
+    const real::V3<R> a(loop[0]);
+    const R la = real::norm(a);
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+      const real::V3<R> b(loop[i]), c(loop[i + 1]);
+      const R lb = real::norm(b), lc = real::norm(c);
+      const R numerator = dot(a, cross(b - a, c - a));
+      const R denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+      sum.add(R(2) * real::atan2(numerator, denominator));
+    }
+  }
+  return sum;
+}
+
+template <class R>
+Sum<R> lambert_sum(const SphericalRegion& region, const Vec3& n_in) {
+  const real::V3<R> n(n_in);
+  Sum<R> sum;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) { sum.add(R(0.5) * arc.length * dot(arc.normal, n)); });
+  return sum;
+}
+
+// τ^k and the magnitudes of their terms, k = 0..n.
+template <class R>
+std::vector<Sum<R>> axial_moment_sums(const SphericalRegion& region, const Vec3& w_in, int n) {
+  const real::V3<R> w(w_in);
+  std::vector<Sum<R>> tau(static_cast<std::size_t>(n) + 1);
+  tau[0] = solid_angle_sum<R>(region);
+  if (n == 0) return tau;
+  std::vector<Sum<R>> boundary(static_cast<std::size_t>(n));
+  std::vector<R> G;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
+    arc_power_integrals(arc, w, n - 1, G);
+    const R wm = dot(w, arc.normal);
+    for (int k = 0; k < n; ++k) boundary[k].add(wm * G[k]);
+  });
+  const R w2 = dot(w, w);
+  for (int k = 1; k <= n; ++k) {
+    const Sum<R> lower = k >= 2 ? tau[k - 2] : Sum<R>{};
+    const R scale = R(k - 1) * w2;
+    tau[k].value = (scale * lower.value + boundary[k - 1].value) / R(k + 1);
+    tau[k].magnitude = (scale * lower.magnitude + boundary[k - 1].magnitude) / R(k + 1);
+  }
+  return tau;
+}
+
+template <class R>
+Sum<R> double_axis_sum(const SphericalRegion& region, const Vec3& w_in, const Vec3& v_in, int n) {
+  const real::V3<R> w(w_in), v(v_in);
+  Sum<R> boundary;
+  std::vector<R> G;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
+    arc_power_integrals(arc, w, n, G);
+    boundary.add(dot(v, arc.normal) * G[n]);
+  });
+  Sum<R> result;
+  if (n > 0) {
+    const Sum<R> lower = axial_moment_sums<R>(region, w_in, n - 1)[n - 1];
+    const R scale = R(n) * dot(w, v);
+    result.add(scale * lower.value, real::abs(scale) * lower.magnitude);
+  }
+  result.add(boundary.value, boundary.magnitude);
+  result.value /= R(n + 2);
+  result.magnitude /= R(n + 2);
+  return result;
+}
+
+// Cancellation limits: a result computed with unit roundoff u from terms of total magnitude M
+// carries an error of about 10·u·M; these bound it near 1e-13 of the result.
+template <class R>
+bool well_conditioned(const Sum<R>& s, double kappa_limit) {
+  return s.magnitude <= R(kappa_limit) * real::abs(s.value);
+}
+template <class R>
+bool well_conditioned(const std::vector<Sum<R>>& sums, double kappa_limit) {
+  return std::all_of(sums.begin(), sums.end(), [&](const Sum<R>& s) { return well_conditioned(s, kappa_limit); });
+}
+
+double to_double(const Sum<double>& s) { return s.value; }
+template <class R>
+double to_double(const Sum<R>& s) {
+  return double(s.value);
+}
+template <class R>
+std::vector<double> to_double(const std::vector<Sum<R>>& sums) {
+  std::vector<double> out;
+  for (const auto& s : sums) out.push_back(double(s.value));
+  return out;
+}
+
+// Evaluates compute(R{}) in double, then long double, then __float128, until the result (a Sum or
+// a vector of them) is well conditioned for that precision.
+template <class F>
+auto with_escalation(F&& compute) {
+  const auto d = compute(double{});
+  if (well_conditioned(d, 64)) return last_precision = 0, to_double(d);
+  const auto l = compute((long double)0);
+  if (well_conditioned(l, 64.0 * 2048)) return last_precision = 1, to_double(l);
+#ifdef DAYLIT_HAS_FLOAT128
+  return last_precision = 2, to_double(compute(real::quad(0)));
+#else
+  return last_precision = 1, to_double(l);
+#endif
 }
 
 }  // namespace
 
-double lambert(const SphericalRegion& region, const Vec3& n) noexcept {
-  double sum = 0;
-  for_each_edge(region, [&](const ArcEdge& arc) { sum += arc.length * dot(arc.normal, n); });
-  return 0.5 * sum;
+double lambert(const SphericalRegion& region, const Vec3& n) {
+  return with_escalation([&](auto r) { return lambert_sum<decltype(r)>(region, n); });
 }
 
 std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, int n) {
-  std::vector<double> tau(std::size_t(n) + 1, 0.0);
-  tau[0] = solid_angle(region);
-  if (n == 0) return tau;
-  // boundary[k] = Σ_edges (w·m) ∫_arc (w·u)^k ds, k = 0..n−1
-  std::vector<double> boundary(std::size_t(n), 0.0), G;
-  for_each_edge(region, [&](const ArcEdge& arc) {
-    arc_power_integrals(arc, w, n - 1, G);
-    const double wm = dot(w, arc.normal);
-    for (int k = 0; k < n; ++k) boundary[k] += wm * G[k];
-  });
-  const double w2 = dot(w, w);
-  for (int k = 1; k <= n; ++k) tau[k] = ((k - 1) * w2 * (k >= 2 ? tau[k - 2] : 0.0) + boundary[k - 1]) / (k + 1);
-  return tau;
+  return with_escalation([&](auto r) { return axial_moment_sums<decltype(r)>(region, w, n); });
 }
 
 double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n) {
-  double boundary = 0;
-  std::vector<double> G;
-  for_each_edge(region, [&](const ArcEdge& arc) {
-    arc_power_integrals(arc, w, n, G);
-    boundary += dot(v, arc.normal) * G[n];
-  });
-  const double lower = n > 0 ? n * dot(w, v) * axial_moments(region, w, n - 1)[n - 1] : 0.0;
-  return (lower + boundary) / (n + 2);
+  return with_escalation([&](auto r) { return double_axis_sum<decltype(r)>(region, w, v, n); });
 }
+
+int last_moment_precision() noexcept { return last_precision; }
 
 }  // namespace daylit

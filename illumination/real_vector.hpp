@@ -1,0 +1,51 @@
+#pragma once
+// 3-vectors over a real type R (double, long double, or __float128 where the compiler has it), so
+// that a kernel can be re-run in extended precision when its edge terms cancel (DESIGN.md §7).
+
+#include <cmath>
+
+#include "geometry/vec3.hpp"
+
+#if defined(__SIZEOF_FLOAT128__) && !defined(__clang__)
+#include <quadmath.h>
+#define DAYLIT_HAS_FLOAT128 1
+#endif
+
+namespace daylit::real {
+
+using std::abs;
+using std::atan2;
+using std::sqrt;
+#ifdef DAYLIT_HAS_FLOAT128
+using quad = __float128;
+inline quad abs(quad x) { return fabsq(x); }
+inline quad atan2(quad y, quad x) { return atan2q(y, x); }
+inline quad sqrt(quad x) { return sqrtq(x); }
+#endif
+
+template <class R>
+struct V3 {
+  R x = 0, y = 0, z = 0;
+
+  V3() = default;
+  V3(R x_, R y_, R z_) : x(x_), y(y_), z(z_) {}
+  explicit V3(const Vec3& v) : x(v.x), y(v.y), z(v.z) {}
+};
+
+template <class R> V3<R> operator+(const V3<R>& a, const V3<R>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class R> V3<R> operator-(const V3<R>& a, const V3<R>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class R> V3<R> operator*(R s, const V3<R>& a) { return {s * a.x, s * a.y, s * a.z}; }
+template <class R> V3<R> operator/(const V3<R>& a, R s) { return {a.x / s, a.y / s, a.z / s}; }
+template <class R> R dot(const V3<R>& a, const V3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class R> V3<R> cross(const V3<R>& a, const V3<R>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// Length, scaled against overflow and underflow (std::hypot has no __float128 overload).
+template <class R> R norm(const V3<R>& a) {
+  const R m = std::max({abs(a.x), abs(a.y), abs(a.z)});
+  if (!(m > 0)) return R(0);
+  const V3<R> s = a / m;
+  return m * sqrt(dot(s, s));
+}
+
+}  // namespace daylit::real

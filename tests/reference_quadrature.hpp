@@ -1,0 +1,86 @@
+#pragma once
+// Independent references for the tests: tensor-product Gauss–Legendre quadrature in long double
+// over planar rectangles, integrating over area (not over the sphere), so that it shares no code
+// and no formula with the kernels under test.
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "geometry/vec3.hpp"
+
+namespace daylit::test {
+
+struct LVec3 {
+  long double x, y, z;
+};
+
+// Nodes and weights of the n-point Gauss–Legendre rule on [−1, 1], by Newton's method on P_n.
+inline void gauss_legendre(int n, std::vector<long double>& x, std::vector<long double>& w) {
+  x.assign(n, 0);
+  w.assign(n, 0);
+  const long double pi = 3.141592653589793238462643383279502884L;
+  for (int i = 0; i < n; ++i) {
+    long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L));
+    long double dp = 0;
+    for (int iter = 0; iter < 100; ++iter) {
+      long double p0 = 1, p1 = t;
+      for (int k = 2; k <= n; ++k) {
+        const long double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (t * p1 - p0) / (t * t - 1);
+      const long double step = p1 / dp;
+      t -= step;
+      if (std::abs(step) < 1e-20L) break;
+    }
+    x[i] = t;
+    w[i] = 2 / ((1 - t * t) * dp * dp);
+  }
+}
+
+// ∫ over the parallelogram origin + s·e1 + t·e2 (s, t ∈ [0, 1]) of f(x) dA, split into
+// panels × panels sub-parallelograms with an order-point rule on each.
+inline long double integrate_parallelogram(const LVec3& origin, const LVec3& e1, const LVec3& e2,
+                                           const std::function<long double(const LVec3&)>& f, int panels = 8,
+                                           int order = 24) {
+  std::vector<long double> x, w;
+  gauss_legendre(order, x, w);
+  const LVec3 c{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+  const long double area = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+  long double sum = 0;
+  for (int ps = 0; ps < panels; ++ps)
+    for (int pt = 0; pt < panels; ++pt)
+      for (int i = 0; i < order; ++i)
+        for (int j = 0; j < order; ++j) {
+          const long double s = (ps + 0.5L * (x[i] + 1)) / panels;
+          const long double t = (pt + 0.5L * (x[j] + 1)) / panels;
+          const LVec3 q{origin.x + s * e1.x + t * e2.x, origin.y + s * e1.y + t * e2.y, origin.z + s * e1.z + t * e2.z};
+          sum += w[i] * w[j] * f(q);
+        }
+  return sum * area / (4.0L * panels * panels);
+}
+
+// Directional integral ∫ g(u) dσ(u) over the directions from p through the parallelogram: the
+// surface integral of g(u) |m·(x − p)| / r³ with m the parallelogram's unit normal.
+inline long double integrate_directions(const LVec3& p, const LVec3& origin, const LVec3& e1, const LVec3& e2,
+                                        const std::function<long double(const LVec3&)>& g, int panels = 8,
+                                        int order = 24) {
+  LVec3 m{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+  const long double ml = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+  m = {m.x / ml, m.y / ml, m.z / ml};
+  return integrate_parallelogram(
+      origin, e1, e2,
+      [&](const LVec3& x) {
+        const LVec3 d{x.x - p.x, x.y - p.y, x.z - p.z};
+        const long double r = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        const LVec3 u{d.x / r, d.y / r, d.z / r};
+        return g(u) * std::abs(m.x * d.x + m.y * d.y + m.z * d.z) / (r * r * r);
+      },
+      panels, order);
+}
+
+inline LVec3 lvec(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace daylit::test

@@ -1,0 +1,91 @@
+// Readers reject bad input with a message naming the file, the line and the problem.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "geometry/rad_reader.hpp"
+#include "geometry/scene.hpp"
+#include "geometry/sensor_grid.hpp"
+
+using namespace daylit;
+using Catch::Contains;
+
+namespace {
+
+RadContent read(const std::string& text, bool apertures = false) {
+  RadContent content;
+  read_rad_text(text, "scene.rad", apertures, content);
+  return content;
+}
+
+}  // namespace
+
+TEST_CASE("polygons, materials, comments and multi-line primitives are read") {
+  const auto content = read(
+      "# a comment line\n"
+      "void plastic wall_mat 0 0 5 0.5 0.5 0.5 0 0\n"
+      "void glass clear\n0\n0\n3 0.96 0.96 0.96  # transmissivity\n"
+      "wall_mat polygon wall\n0\n0\n12\n 0 0 0\n 1 0 0\n 1 0 1\n 0 0 1\n"
+      "clear polygon pane 0 0 9 0 1 0  1 1 0  1 1 1\n");
+  REQUIRE(content.polygons.size() == 2);
+  CHECK(content.polygons[0].polygon.vertices.size() == 4);
+  CHECK(content.polygons[0].polygon.where.line == 7);
+  CHECK(content.polygons[1].polygon.where.line == 15);
+  const Scene scene = assemble_scene(content);
+  CHECK(scene.occluders.size() == 1);
+  REQUIRE(scene.apertures.size() == 1);
+  // Radiance's own conversion from transmittance T to transmissivity (glass documentation) must
+  // give back the 0.96 we wrote.
+  const double T = scene.apertures[0].transmittance;
+  const double t = (std::sqrt(.8402528435 + .0072522239 * T * T) - .9166530661) / .0036261119 / T;
+  CHECK(t == Approx(0.96).epsilon(1e-8));
+}
+
+TEST_CASE("sky and source primitives are skipped with a notice") {
+  const auto content = read(
+      "void brightfunc skyfunc 2 skybright skybright.cal 0 0\n"
+      "skyfunc glow sky_glow 0 0 4 1 1 1 0\n"
+      "sky_glow source sky 0 0 4 0 0 1 180\n");
+  CHECK(content.polygons.empty());
+  REQUIRE(content.notices.size() == 2);
+  CHECK_THAT(content.notices[1], Contains("scene.rad:3") && Contains("source"));
+}
+
+TEST_CASE("bad scene input is an error naming file and line") {
+  CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0 1 x 0\n"), Contains("scene.rad:1") && Contains("'x'"));
+  CHECK_THROWS_WITH(read("\nvoid polygon a 0 0 6 0 0 0 1 0 0\n"), Contains("scene.rad:2") && Contains("at least 3"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0 nan 1 0\n"), Contains("scene.rad:1") && Contains("nan"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0 1e999 1 0\n"), Contains("out of range"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 8 0 0 0 1 0 0 1 1\n"), Contains("multiple of 3"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0 2 0 0\n"), Contains("zero area"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 12 0 0 0 1 0 0 1 1 0.5 0 1 0\n"), Contains("not planar"));
+  CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0\n"), Contains("scene.rad:1") && Contains("end of file"));
+  CHECK_THROWS_WITH(read("!gensky 3 21 12\n"), Contains("scene.rad:1") && Contains("gensky"));
+  CHECK_THROWS_WITH(read("\n\nvoid sphere ball 0 0 4 0 0 0 1\n"), Contains("scene.rad:3") && Contains("sphere"));
+  CHECK_THROWS_WITH(read("paint polygon a 0 0 9 0 0 0 1 0 0 1 1 0\n"), Contains("undefined modifier 'paint'"));
+  CHECK_THROWS_WITH(read("void polygon a -1 0 9 0 0 0 1 0 0 1 1 0\n"), Contains("non-negative integer"));
+  CHECK_THROWS_WITH(read("void plastic p 0 0 3 0.5 0.5 0.5\n"), Contains("wrong for its type"));
+  RadContent sink;
+  CHECK_THROWS_WITH(read_rad_file("/nonexistent/scene.rad", false, sink), Contains("/nonexistent/scene.rad") && Contains("cannot open"));
+}
+
+TEST_CASE("aperture files accept void, glass and trans only") {
+  const std::string plastic = "void plastic p 0 0 5 .5 .5 .5 0 0\np polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n";
+  CHECK_THROWS_WITH(assemble_scene(read(plastic, true)), Contains("scene.rad:2") && Contains("apertures must be"));
+  CHECK(assemble_scene(read("void polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n", true)).apertures.at(0).transmittance == 1);
+}
+
+TEST_CASE("sensor grids are read, and bad grids are errors naming file and line") {
+  const auto grid = parse_sensor_grid("0 0 0.85 0 0 1\n\n# comment\n1 2 3 0 0 2\n", "room.pts");
+  REQUIRE(grid.sensors.size() == 2);
+  CHECK(grid.name == "room");
+  CHECK(grid.sensors[1].normal.z == 1);
+  CHECK_THROWS_WITH(parse_sensor_grid("0 0 0.85 0 0 1\n0 0 x 0 0 1\n", "g.pts"), Contains("g.pts:2") && Contains("'x'"));
+  CHECK_THROWS_WITH(parse_sensor_grid("0 0 0.85 0 0\n", "g.pts"), Contains("g.pts:1") && Contains("6 numbers"));
+  CHECK_THROWS_WITH(parse_sensor_grid("0 0 0.85 0 0 1 7\n", "g.pts"), Contains("more than 6"));
+  CHECK_THROWS_WITH(parse_sensor_grid("0 0 0.85 0 0 0\n", "g.pts"), Contains("g.pts:1") && Contains("zero"));
+  CHECK_THROWS_WITH(parse_sensor_grid("0 nan 0.85 0 0 1\n", "g.pts"), Contains("g.pts:1"));
+  CHECK_THROWS_WITH(parse_sensor_grid("\n# only a comment\n", "g.pts"), Contains("g.pts") && Contains("empty"));
+  CHECK_THROWS_WITH(read_sensor_grid("/nonexistent/g.pts"), Contains("cannot open"));
+}

@@ -1,0 +1,182 @@
+// Exact visibility on the configurations where floating-point clipping fails: walls coplanar with
+// the aperture, occluder edges collinear with aperture edges, sensors in the plane of an occluder
+// or of the aperture. The exact path must give the analytic answer; what the float path gives is
+// printed (run the test binary with -s, or ctest -V) and reported in the issue notes.
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+
+#include "geometry/convex_pieces.hpp"
+#include "reference_quadrature.hpp"
+#include "sky/sky_component.hpp"
+
+using namespace daylit;
+using daylit::test::LVec3;
+
+namespace {
+
+constexpr long double kEout = 7 * 3.141592653589793238462643383279502884L / 9;
+
+Polygon polygon(std::vector<Vec3> v, std::string name = "p") {
+  Polygon p;
+  p.vertices = std::move(v);
+  p.name = std::move(name);
+  p.where = {"test", 1};
+  return p;
+}
+
+double sc(const Scene& scene, const Vec3& p, GeometryMode mode, const Vec3& n = {0, 0, 1}) {
+  const VisibilityEngine engine(scene, mode);
+  VisibilityCounters counters;
+  return sky_component_percent(engine, scene, {p, normalized(n)}, SkyModel::cie_overcast, counters);
+}
+
+// Overcast SC (percent) through the axis-aligned rectangle x ∈ [x0, x1], z ∈ [z0, z1] at y = y0.
+long double reference_sc(const Vec3& p, long double x0, long double x1, long double z0, long double z1, long double y0 = 0) {
+  if (x1 <= x0 || z1 <= z0) return 0;
+  return 100 * test::integrate_directions(test::lvec(p), {x0, y0, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0},
+                                          [](const LVec3& u) { return (1 + 2 * u.z) / 3 * u.z; }) /
+         kEout;
+}
+
+void record(const char* what, double exact, double floating, long double reference) {
+  const double ref = double(reference);
+  std::printf("%-58s exact %.17g  float %.17g  |float-ref|/ref %.3g\n", what, exact, floating,
+              ref != 0 ? std::abs(floating - ref) / ref : std::abs(floating));
+}
+
+double relative_error(double value, long double reference) {
+  return reference == 0 ? std::abs(value) : double(std::abs((long double)value - reference) / std::abs(reference));
+}
+
+// The window of these tests: y = 0, x ∈ [0, 2], z ∈ [1, 2]; the room is at y > 0.
+const std::vector<Vec3> kWindow{{0, 0, 1}, {2, 0, 1}, {2, 0, 2}, {0, 0, 2}};
+
+// A wall in the plane of the window, x ∈ [−3, 5], z ∈ [0, 3], with the window cut out by a seam:
+// the outer boundary, in along the cut, around the hole the other way, and back out.
+Polygon wall_with_seam_hole() {
+  return polygon({{-3, 0, 0}, {5, 0, 0}, {5, 0, 3}, {-3, 0, 3}, {-3, 0, 1}, {0, 0, 1}, {0, 0, 2}, {2, 0, 2}, {2, 0, 1}, {0, 0, 1}, {-3, 0, 1}},
+                 "wall");
+}
+
+// Four faces of a reveal of depth d outside the window (y ∈ [−d, 0]).
+std::vector<Polygon> reveal(double d) {
+  return {polygon({{0, 0, 1}, {0, -d, 1}, {0, -d, 2}, {0, 0, 2}}, "left"), polygon({{2, 0, 1}, {2, 0, 2}, {2, -d, 2}, {2, -d, 1}}, "right"),
+          polygon({{0, 0, 1}, {2, 0, 1}, {2, -d, 1}, {0, -d, 1}}, "sill"), polygon({{0, 0, 2}, {0, -d, 2}, {2, -d, 2}, {2, 0, 2}}, "head")};
+}
+
+}  // namespace
+
+TEST_CASE("a wall coplanar with the aperture, with a window-shaped hole, hides nothing") {
+  for (const bool seam : {true, false}) {
+    Scene scene;
+    scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+    if (seam) {
+      scene.occluders.push_back(wall_with_seam_hole());
+    } else {
+      scene.occluders.push_back(polygon({{-3, 0, 0}, {5, 0, 0}, {5, 0, 1}, {-3, 0, 1}}));
+      scene.occluders.push_back(polygon({{-3, 0, 2}, {5, 0, 2}, {5, 0, 3}, {-3, 0, 3}}));
+      scene.occluders.push_back(polygon({{-3, 0, 1}, {0, 0, 1}, {0, 0, 2}, {-3, 0, 2}}));
+      scene.occluders.push_back(polygon({{2, 0, 1}, {5, 0, 1}, {5, 0, 2}, {2, 0, 2}}));
+    }
+    for (const Vec3 p : {Vec3{1, 2, 0.85}, Vec3{-1, 0.5, 0.85}, Vec3{0.3, 3, 1.2}}) {
+      const long double ref = reference_sc(p, 0, 2, std::max(1.0, p.z), 2);
+      const double exact = sc(scene, p, GeometryMode::exact);
+      const double floating = sc(scene, p, GeometryMode::floating);
+      record(seam ? "coplanar wall, seam hole" : "coplanar wall, four rectangles", exact, floating, ref);
+      CHECK(relative_error(exact, ref) < 1e-10);
+    }
+  }
+}
+
+TEST_CASE("a coplanar occluder sharing an edge with the aperture hides exactly its half") {
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  scene.occluders.push_back(polygon({{0, 0, 1}, {1, 0, 1}, {1, 0, 2}, {0, 0, 2}}, "left half"));
+  const Vec3 p{0.7, 2.5, 0.85};
+  const long double ref = reference_sc(p, 1, 2, 1, 2);
+  const double exact = sc(scene, p, GeometryMode::exact);
+  record("coplanar occluder covering the left half", exact, sc(scene, p, GeometryMode::floating), ref);
+  CHECK(relative_error(exact, ref) < 1e-10);
+}
+
+TEST_CASE("a reveal, whose inner edges are collinear with the window's, leaves the projection of the outer opening") {
+  // Seen from p, the outer opening (y = −d) projects onto the window plane scaled by
+  // s = p_y/(p_y + d) towards p's foot point; what stays visible is W ∩ that rectangle.
+  const double d = 0.3;
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (auto& f : reveal(d)) scene.occluders.push_back(f);
+  scene.occluders.push_back(wall_with_seam_hole());
+  for (const Vec3 p : {Vec3{0.5, 1.5, 0.85}, Vec3{1, 0.6, 1.5}, Vec3{3, 2, 0.5}, Vec3{-0.5, 4, 0.85}}) {
+    const long double s = p.y / (p.y + d);
+    const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * s; };
+    const long double x0 = std::max<long double>(0, proj(0, p.x)), x1 = std::min<long double>(2, proj(2, p.x));
+    const long double z0 = std::max<long double>({1, proj(1, p.z), p.z}), z1 = std::min<long double>(2, proj(2, p.z));
+    const long double ref = reference_sc(p, x0, x1, z0, z1);
+    const double exact = sc(scene, p, GeometryMode::exact);
+    record("reveal of depth 0.3", exact, sc(scene, p, GeometryMode::floating), ref);
+    INFO("sensor " << p.x << " " << p.y << " " << p.z);
+    CHECK(relative_error(exact, ref) < 1e-10);
+  }
+}
+
+TEST_CASE("a sensor in the plane of an occluder is not shadowed by it") {
+  // The sill (z = 1) seen edge-on from a sensor at z = 1: it hides nothing; the horizon does.
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (auto& f : reveal(0.3)) scene.occluders.push_back(f);
+  const Vec3 p{1, 1.2, 1};
+  const long double s = p.y / (p.y + 0.3);
+  const long double ref = reference_sc(p, 1 - s, 1 + s, 1, 1 + s);
+  const double exact = sc(scene, p, GeometryMode::exact);
+  record("sensor in the plane of the sill", exact, sc(scene, p, GeometryMode::floating), ref);
+  CHECK(relative_error(exact, ref) < 1e-10);
+}
+
+TEST_CASE("a sensor in the plane of the aperture sees none of it") {
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (const Vec3 p : {Vec3{1, 0, 0.5}, Vec3{3, 0, 1.5}, Vec3{1, 0, 1.5}}) {
+    CHECK(sc(scene, p, GeometryMode::exact, {0, 1, 0.2}) == 0);
+    CHECK(sc(scene, p, GeometryMode::exact) == 0);
+  }
+}
+
+TEST_CASE("an occluder beyond the window and one in front of it both block") {
+  // Two opaque panels, one inside (y = 1) and one outside (y = −1), each the mirror image of the
+  // other's shadow: together they cover the full window height over known x ranges.
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  const Vec3 p{1, 2, 0.5};
+  // Inside panel at y = 1 (half way): shadow x' = 1 + (x − 1)·2. Panel x ∈ [0.5, 0.75] → [0, 0.5].
+  scene.occluders.push_back(polygon({{0.5, 1, 0}, {0.75, 1, 0}, {0.75, 1, 3}, {0.5, 1, 3}}, "inside"));
+  // Outside panel at y = −1: shadow x' = 1 + (x − 1)·2/3. Panel x ∈ [1.75, 2.5] → [1.5, 2].
+  scene.occluders.push_back(polygon({{1.75, -1, 0}, {2.5, -1, 0}, {2.5, -1, 9}, {1.75, -1, 9}}, "outside"));
+  const long double ref = reference_sc(p, 0.5, 1.5, 1, 2);
+  const double exact = sc(scene, p, GeometryMode::exact);
+  record("panels in front of and beyond the window", exact, sc(scene, p, GeometryMode::floating), ref);
+  CHECK(relative_error(exact, ref) < 1e-10);
+}
+
+TEST_CASE("non-convex and seamed polygons are split into convex pieces that cover them") {
+  const auto pieces = convex_pieces(wall_with_seam_hole(), 0);
+  double area = 0;
+  for (const auto& piece : pieces) {
+    REQUIRE(piece.vertices.size() == 3);
+    area += 0.5 * norm(cross(piece.vertices[1] - piece.vertices[0], piece.vertices[2] - piece.vertices[0]));
+  }
+  CHECK(area == Approx(8 * 3 - 2 * 1).epsilon(1e-15));
+  const Polygon l_shape = polygon({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}});
+  double l_area = 0;
+  for (const auto& piece : convex_pieces(l_shape, 0))
+    l_area += 0.5 * norm(cross(piece.vertices[1] - piece.vertices[0], piece.vertices[2] - piece.vertices[0]));
+  CHECK(l_area == Approx(3).epsilon(1e-15));
+  CHECK(convex_pieces(polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}), 0).size() == 1);
+}
+
+TEST_CASE("a polygon that crosses itself is an error naming its line") {
+  const Polygon bowtie = polygon({{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 1, 0}}, "bowtie");
+  CHECK_THROWS_WITH(convex_pieces(bowtie, 0), Catch::Contains("test:1") && Catch::Contains("intersects itself"));
+}
