@@ -42,6 +42,8 @@ nlohmann::json counters_json(const VisibilityCounters& c) {
       {"pairs_without_exact_clipping", c.pairs_unobstructed + c.pairs_not_facing},
       {"pairs_unobstructed", c.pairs_unobstructed},
       {"pairs_clipped", c.pairs_clipped},
+      {"pairs_clipped_in_certified_intervals", c.pairs_clipped - c.pairs_rational},
+      {"pairs_needing_exact_rationals", c.pairs_rational},
       {"occluder_pieces_culled_by_boxes", c.occluders_box_culled},
       {"occluder_pieces_tested_exactly", c.occluders_tested},
       {"occluder_pieces_clipped", c.occluders_clipped},

@@ -11,7 +11,8 @@
 namespace daylit {
 
 enum class GeometryMode {
-  exact,     // filtered exact predicates, exact (lazy rational) constructions, correctly rounded output
+  exact,     // exact predicates; constructions in interval arithmetic, certified, with exact
+             // rationals wherever an interval cannot decide; output rounded once
   floating,  // the same algorithm in double precision, for comparison
 };
 
@@ -20,7 +21,9 @@ struct VisibilityCounters {
   std::uint64_t pairs = 0;               // sensor–aperture-piece pairs evaluated
   std::uint64_t pairs_not_facing = 0;    // piece behind the receiver, below its horizon, or edge-on
   std::uint64_t pairs_unobstructed = 0;  // no occluder survived culling: no exact construction at all
-  std::uint64_t pairs_clipped = 0;       // occluders clipped and subtracted (exact in exact mode)
+  std::uint64_t pairs_clipped = 0;       // occluders clipped and subtracted
+  std::uint64_t pairs_rational = 0;      // of those, pairs where interval arithmetic could not certify
+                                         // every decision, so exact rationals were used
   std::uint64_t occluders_box_culled = 0;    // occluder pieces (or BVH subtrees' pieces) culled by boxes
   std::uint64_t occluders_tested = 0;        // occluder pieces that reached the exact predicates
   std::uint64_t occluders_clipped = 0;       // occluder pieces that survived and were clipped
@@ -30,6 +33,7 @@ struct VisibilityCounters {
     pairs_not_facing += o.pairs_not_facing;
     pairs_unobstructed += o.pairs_unobstructed;
     pairs_clipped += o.pairs_clipped;
+    pairs_rational += o.pairs_rational;
     occluders_box_culled += o.occluders_box_culled;
     occluders_tested += o.occluders_tested;
     occluders_clipped += o.occluders_clipped;

@@ -278,8 +278,8 @@ def office(folder):
     s = RadFile("""
 daylit sample: side-lit office, 4 m wide (x 0..4), 6 m deep (y 0..6), 3 m high (z 0..3).
 Window in the south wall (y = 0 inner face, y = -0.3 outer face): x 0.8..3.2, z 0.9..2.4.
-Overhang above the window outside at z 2.5..2.6, y -0.3..-1.1; a 12 m high building across the
-street with its facade at y = -15; ground outside at z = 0. Metres, z up, +y north.
+Overhang above the window outside at z 2.5..2.6, y -0.3..-1.1; an 8 m high building across the
+street with its facade at y = -18; ground outside at z = 0. Metres, z up, +y north.
 Normals point away from the solid each face bounds (into the room for room surfaces).
 The glazing is in apertures.rad (--apertures).""")
     s.material("plastic", "floor_mat", ["0.2", "0.2", "0.2", "0", "0"])
@@ -320,9 +320,9 @@ The glazing is in apertures.rad (--apertures).""")
               "# its back (y = -0.3) is against the wall and left out")
     s.box("facade_mat", "overhang", "0.4", "3.6", "-1.1", T, "2.5", "2.6", faces="xXyzZ")
 
-    s.comment("Obstructing building across the street: facade at y = -15 facing the office,\n"
-              "# x -20..24, 12 m high, 10 m deep (y -25..-15)")
-    s.box("facade_mat", "opposite", "-20", "24", "-25", "-15", "0", "12", faces="xXyYZ")
+    s.comment("Obstructing building across the street: facade at y = -18 facing the office,\n"
+              "# x -20..24, 8 m high, 10 m deep (y -28..-18)")
+    s.box("facade_mat", "opposite", "-20", "24", "-28", "-18", "0", "8", faces="xXyYZ")
 
     s.comment("Ground outside the office (z = 0), x -40..44, y -40..-0.3")
     s.rect("ground_mat", "ground", "z", 0, "-40", "44", "-40", T, +1)

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what daylit needs to build and test on Debian 12 (bookworm) or later.
+set -euo pipefail
+packages=(
+  g++ cmake ninja-build pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev   # exact geometry (CGAL over GMP rationals), correct rounding
+  libtbb-dev                           # threads
+  libopenimageio-dev fonts-dejavu-core # falsecolour images and their legends
+  libcli11-dev nlohmann-json3-dev libfmt-dev
+  catch2                               # tests (v2)
+)
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${packages[@]}" > /dev/null
+echo "setup: installed ${#packages[@]} packages"
