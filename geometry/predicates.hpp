@@ -1,0 +1,82 @@
+#pragma once
+// Signs of the predicates the visibility routine decides on input coordinates (internal to
+// geometry/). ExactSigns answers exactly: CGAL's filtered orientation, or interval arithmetic
+// with an exact rational fallback for the expressions that are not kernel predicates. FloatSigns
+// answers the same questions in plain double, for the float path that daylit keeps for comparison.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
+
+#include "geometry/vec3.hpp"
+
+namespace daylit::predicates {
+
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+inline Epick::Point_3 point3(const Vec3& v) { return {v.x, v.y, v.z}; }
+inline Epick::Point_2 drop(const Vec3& v, int k) { return {v[(k + 1) % 3], v[(k + 2) % 3]}; }
+
+inline int sign_of(double x) { return (x > 0) - (x < 0); }
+
+// Interval arithmetic first; exact rationals only when the interval contains zero. This is the
+// filter of CGAL's Filtered_predicate, written out for expressions that are not kernel predicates.
+template <class Expr>
+int filtered_sign(const Expr& expr) {
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    const CGAL::Interval_nt<false> r = expr(CGAL::Interval_nt<false>(0));
+    if (r.inf() > 0) return 1;
+    if (r.sup() < 0) return -1;
+    if (r.inf() == 0 && r.sup() == 0) return 0;
+  }
+  return int(CGAL::sign(expr(CGAL::Gmpq(0))));
+}
+
+// n·(v − p)
+template <class T>
+T dot_diff(const Vec3& n, const Vec3& v, const Vec3& p) {
+  return T(n.x) * (T(v.x) - T(p.x)) + T(n.y) * (T(v.y) - T(p.y)) + T(n.z) * (T(v.z) - T(p.z));
+}
+
+// ((a − o) × (b − o)) · (v − p)
+template <class T>
+T normal_dot_diff(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& v, const Vec3& p) {
+  const T ax = T(a.x) - T(o.x), ay = T(a.y) - T(o.y), az = T(a.z) - T(o.z);
+  const T bx = T(b.x) - T(o.x), by = T(b.y) - T(o.y), bz = T(b.z) - T(o.z);
+  return (ay * bz - az * by) * (T(v.x) - T(p.x)) + (az * bx - ax * bz) * (T(v.y) - T(p.y)) +
+         (ax * by - ay * bx) * (T(v.z) - T(p.z));
+}
+
+struct ExactSigns {
+  // sign det[a − p, b − p, c − p]
+  static int orient3(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    return int(CGAL::orientation(point3(p), point3(a), point3(b), point3(c)));
+  }
+  // orientation of (a, b, c) in the coordinates that drop axis k
+  static int orient2(const Vec3& a, const Vec3& b, const Vec3& c, int k) {
+    return int(CGAL::orientation(drop(a, k), drop(b, k), drop(c, k)));
+  }
+  static int dot_diff(const Vec3& n, const Vec3& v, const Vec3& p) {
+    return filtered_sign([&](auto zero) { return predicates::dot_diff<decltype(zero)>(n, v, p); });
+  }
+  static int normal_dot_diff(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& v, const Vec3& p) {
+    return filtered_sign([&](auto zero) { return predicates::normal_dot_diff<decltype(zero)>(o, a, b, v, p); });
+  }
+};
+
+struct FloatSigns {
+  static int orient3(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    return sign_of(dot(cross(a - p, b - p), c - p));
+  }
+  static int orient2(const Vec3& a, const Vec3& b, const Vec3& c, int k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    return sign_of((b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]));
+  }
+  static int dot_diff(const Vec3& n, const Vec3& v, const Vec3& p) { return sign_of(predicates::dot_diff<double>(n, v, p)); }
+  static int normal_dot_diff(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& v, const Vec3& p) {
+    return sign_of(predicates::normal_dot_diff<double>(o, a, b, v, p));
+  }
+};
+
+}  // namespace daylit::predicates

@@ -1,0 +1,421 @@
+#pragma once
+// Step 3 of the visibility routine (DESIGN.md §2), generic over the number type FT: clip the
+// aperture piece to the receiver's hemisphere and horizon, clip each occluder piece to the view
+// cone, project it centrally onto the aperture's plane, subtract the convex shadows piece by
+// piece. Internal to geometry/visibility.cpp.
+//
+// FT = double is the float path. FT = Interval (CGAL's interval arithmetic) and FT = LazyExact
+// (CGAL's lazy exact rationals) form the exact path, with two helps for sign decisions:
+//  - Provenance. Every vertex knows the line its outgoing edge lies on (an aperture or occluder
+//    edge between input vertices, the receiver's horizon or tangent plane, or a side plane of the
+//    view cone) and, where it has one, the input vertex it is (or projects from). A vertex on the
+//    line it is tested against has sign 0 by construction, and the sign of an input vertex
+//    against a plane through input vertices and p is an exact predicate on input doubles. These
+//    are precisely the degeneracies buildings are made of: shared vertices and edges, reveals,
+//    coplanar walls, triangulated faces. Every shadow edge cut by the view cone lies on the
+//    aperture's boundary and is skipped in the subtraction.
+//  - Intervals. Every other sign is read off an interval; one that contains zero throws
+//    CGAL::Uncertain_conversion_exception, and the caller redoes the pair in exact rationals.
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Lazy_exact_nt.h>
+#include <mpfr.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+#include "geometry/convex_pieces.hpp"
+#include "geometry/predicates.hpp"
+#include "geometry/spherical_region.hpp"
+
+namespace daylit::clipping {
+
+using Interval = CGAL::Interval_nt<false>;
+using LazyExact = CGAL::Lazy_exact_nt<CGAL::Gmpq>;
+using predicates::sign_of;
+
+inline int sign_of(const LazyExact& x) { return int(CGAL::sign(x)); }
+// Throws CGAL::Uncertain_conversion_exception when the interval contains zero but is not zero.
+inline int sign_of(const Interval& x) { return int(CGAL::make_certain(CGAL::sign(x))); }
+
+// ---------------------------------------------------------------------------------------------
+// Rounding the result to double, once.
+
+inline double round_to_double(double x, double = 0) { return x; }
+
+// The midpoint of an interval that is narrow against `scale` (the magnitude of the vector the
+// value is a component of: directions matter to the kernels relative to their length); a wider
+// one sends the pair to exact arithmetic. Accepted midpoints are within 2^-45 (2.8e-14) of
+// `scale` of the exact value: on the office sample this bound lets all but 18 of 2,400 pairs
+// finish in intervals, and moves the sky component by less than 1e-14 relative.
+inline double round_to_double(const Interval& x, double scale) {
+  const double lo = x.inf(), hi = x.sup();
+  if (hi - lo <= 0x1p-44 * scale) return lo + 0.5 * (hi - lo);
+  throw CGAL::Uncertain_conversion_exception("interval too wide to round");
+}
+
+// Within 2^-50 relative when the lazy interval is already that tight; otherwise the exact
+// rational rounded to nearest through MPFR (CGAL::to_double may return an interval midpoint far
+// from the value, and mpq_get_d truncates: DESIGN.md §7).
+inline double round_to_double(const LazyExact& x, double = 0) {
+  const auto [lo, hi] = CGAL::to_interval(x);
+  if (lo == hi) return lo;
+  if ((lo > 0 || hi < 0) && hi - lo <= 0x1p-50 * std::min(std::abs(lo), std::abs(hi))) return lo + 0.5 * (hi - lo);
+  const CGAL::Gmpq& q = x.exact();
+  mpfr_t r;
+  mpfr_init2(r, 53);
+  mpfr_set_q(r, q.mpq(), MPFR_RNDN);
+  const double d = mpfr_get_d(r, MPFR_RNDN);
+  mpfr_clear(r);
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Provenance.
+
+// The line (or, in 3D, the plane through the receiver) an edge lies on.
+struct LineId {
+  enum class Kind : std::uint8_t { unknown, segment, hemisphere, horizon, cone };
+  Kind kind = Kind::unknown;
+  int cone_edge = -1;                          // cone: index of the aperture edge
+  const Vec3* a = nullptr, *b = nullptr;       // segment: its input endpoints
+
+  static LineId segment(const Vec3& a, const Vec3& b) { return {Kind::segment, -1, &a, &b}; }
+  static LineId cone(int e) { return {Kind::cone, e, nullptr, nullptr}; }
+  static LineId named(Kind k) { return {k, -1, nullptr, nullptr}; }
+};
+
+// Equal identities mean the same line. Segments compare by endpoint values, so the shared edge
+// of two occluder pieces (two triangles of one wall, two faces of a box) is recognised.
+inline bool same_line(const LineId& x, const LineId& y) {
+  if (x.kind != y.kind || x.kind == LineId::Kind::unknown) return false;
+  if (x.kind == LineId::Kind::cone) return x.cone_edge == y.cone_edge;
+  if (x.kind == LineId::Kind::segment)
+    return (*x.a == *y.a && *x.b == *y.b) || (*x.a == *y.b && *x.b == *y.a);
+  return true;
+}
+
+// The input vertex two segments share, if any: distinct lines through it meet there.
+inline const Vec3* shared_endpoint(const LineId& x, const LineId& y) {
+  if (x.kind != LineId::Kind::segment || y.kind != LineId::Kind::segment || same_line(x, y)) return nullptr;
+  if (*x.a == *y.a || *x.a == *y.b) return x.a;
+  if (*x.b == *y.a || *x.b == *y.b) return x.b;
+  return nullptr;
+}
+
+template <class FT>
+struct Vertex3 {
+  FT c[3];
+  const Vec3* input = nullptr;  // this vertex is an input vertex
+  LineId out;                   // the line of the edge to the next vertex
+  const FT& operator[](int i) const { return c[i]; }
+};
+
+template <class FT>
+struct Vertex2 {
+  FT u, v;                      // coordinates (x_i, x_j) in the aperture's plane, i = k+1, j = k+2
+  const Vec3* at = nullptr;     // the input vertex this vertex is the central projection of
+  bool in_plane = false;        // `at` lies in the aperture's plane: u, v are its exact coordinates
+  LineId out;
+};
+
+template <class FT>
+Vertex3<FT> interpolate(const Vertex3<FT>& a, const Vertex3<FT>& b, const FT& t, const LineId&) {
+  return {{a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t}, nullptr, {}};
+}
+template <class FT>
+Vertex2<FT> interpolate(const Vertex2<FT>& a, const Vertex2<FT>& b, const FT& t, const LineId& cut) {
+  return {a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t, shared_endpoint(a.out, cut), false, {}};
+}
+
+template <class FT>
+struct SignedValues {
+  std::vector<FT> value;
+  std::vector<int> sign;
+  bool any_positive = false, any_negative = false;
+
+  void push(FT v, int s) {
+    any_positive |= s > 0;
+    any_negative |= s < 0;
+    value.push_back(std::move(v));
+    sign.push_back(s);
+  }
+};
+
+// One step of Sutherland–Hodgman on a convex polygon: the part where side·f ≥ 0. New vertices
+// only where the sign strictly changes, so no duplicates arise; the edge that runs along the cut
+// is given the identity `cut`.
+template <class V, class FT>
+std::vector<V> keep_side(const std::vector<V>& poly, const SignedValues<FT>& f, int side, const LineId& cut) {
+  std::vector<V> out;
+  out.reserve(poly.size() + 1);
+  const auto& s = f.sign;
+  const std::size_t m = poly.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t j = (i + 1) % m;
+    if (s[i] * side >= 0) {
+      out.push_back(poly[i]);
+      if (s[i] == 0 && s[j] * side < 0) out.back().out = cut;  // on the line, heading out
+    }
+    if (s[i] * s[j] < 0) {
+      V x = interpolate(poly[i], poly[j], FT(f.value[i] / (f.value[i] - f.value[j])), cut);
+      x.out = s[i] * side > 0 ? cut : poly[i].out;  // exit point: along the cut; entry: along the old edge
+      out.push_back(std::move(x));
+    }
+  }
+  return out;
+}
+
+// Reverses a loop, keeping each edge identity on its edge (which now starts at its other end).
+template <class V>
+void reverse_loop(std::vector<V>& loop) {
+  const std::size_t m = loop.size();
+  std::vector<LineId> ids;
+  for (const V& x : loop) ids.push_back(x.out);
+  std::reverse(loop.begin(), loop.end());
+  for (std::size_t i = 0; i < m; ++i) loop[(2 * m - 2 - i) % m].out = ids[i];
+}
+
+// ---------------------------------------------------------------------------------------------
+
+template <class FT, class Signs>
+class ShadowClipper {
+ public:
+  // Symbolic reasoning belongs to the exact path; the float path decides everything in double.
+  static constexpr bool kSymbolic = !std::is_same_v<FT, double>;
+
+  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh)
+      : p_in_(p), n_in_(n), piece_(piece), sh_(sh), inside_(-sh), k_(piece.drop_axis), i_((k_ + 1) % 3),
+        j_((k_ + 2) % 3) {}
+
+  // Appends the visible part of the piece, as positively oriented loops, to `region`.
+  void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region) {
+    const auto& wv = piece_.vertices;
+    p_ = to3(p_in_);
+    std::vector<Vertex3<FT>> w;
+    for (std::size_t e = 0; e < wv.size(); ++e)
+      w.push_back({{FT(wv[e].x), FT(wv[e].y), FT(wv[e].z)}, &wv[e], LineId::segment(wv[e], wv[(e + 1) % wv.size()])});
+    w0_ = w[0];
+    N_ = cross(sub(w[piece_.base_b], w0_), sub(w[piece_.base_c], w0_));
+    if (!clip_to_receiver(w)) return;
+    for (const auto& x : w) cone_lines_.push_back(x.out);
+
+    std::vector<std::vector<Vertex2<FT>>> shadows;
+    for (const ConvexPiece* blocker : blockers)
+      if (auto shadow = shadow_of(*blocker, w)) shadows.push_back(std::move(*shadow));
+
+    std::vector<std::vector<Vertex2<FT>>> pieces(1);
+    for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
+    for (const auto& shadow : shadows) {
+      std::vector<std::vector<Vertex2<FT>>> next;
+      for (const auto& P : pieces) subtract(P, shadow, next);
+      pieces = std::move(next);
+      if (pieces.empty()) return;
+    }
+    for (const auto& P : pieces) region.loops.push_back(directions(P));
+  }
+
+ private:
+  using V3 = Vertex3<FT>;
+  using V2 = Vertex2<FT>;
+  using Vec = std::array<FT, 3>;
+
+  static Vec to3(const Vec3& v) { return {FT(v.x), FT(v.y), FT(v.z)}; }
+  static Vec sub(const V3& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  static Vec sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  static FT dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  static Vec cross(const Vec& a, const Vec& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  }
+
+  // The receiver's tangent plane and horizon; false if nothing is left.
+  bool clip_to_receiver(std::vector<V3>& w) const {
+    const Vec n = to3(n_in_);
+    SignedValues<FT> front;
+    for (const V3& x : w) {
+      FT value = dot(n, sub(x, p_));
+      const int s = kSymbolic && x.input ? Signs::dot_diff(n_in_, *x.input, p_in_) : sign_of(value);
+      front.push(std::move(value), s);
+    }
+    if (!front.any_positive) return false;
+    if (front.any_negative) w = keep_side(w, front, +1, LineId::named(LineId::Kind::hemisphere));
+    // For an upward receiver the two planes coincide.
+    if (n_in_.x == 0 && n_in_.y == 0) return true;
+    SignedValues<FT> above;
+    for (const V3& x : w) {
+      FT value = x[2] - p_[2];
+      const int s = kSymbolic && x.input ? sign_of(x.input->z - p_in_.z) : sign_of(value);
+      above.push(std::move(value), s);
+    }
+    if (!above.any_positive) return false;
+    if (above.any_negative) w = keep_side(w, above, +1, LineId::named(LineId::Kind::horizon));
+    return true;
+  }
+
+  // Sign of x against side plane e of the cone (through p and edge e of w, positive inside).
+  int cone_side(const V3& x, const LineId& x_in, const LineId& edge, int e, const FT& value) const {
+    if constexpr (kSymbolic) {
+      const LineId cone = LineId::cone(e);
+      if (same_line(x.out, cone) || same_line(x_in, cone)) return 0;
+      if (x.input) {
+        switch (edge.kind) {
+          case LineId::Kind::segment: return inside_ * Signs::orient3(p_in_, *edge.a, *edge.b, *x.input);
+          case LineId::Kind::horizon: return sign_of(x.input->z - p_in_.z);
+          case LineId::Kind::hemisphere: return Signs::dot_diff(n_in_, *x.input, p_in_);
+          default: break;
+        }
+      }
+    }
+    return sign_of(value);
+  }
+
+  // The blocker clipped to the cone over w and projected onto the aperture's plane, counter-
+  // clockwise; nothing if it has no area there.
+  std::optional<std::vector<V2>> shadow_of(const ConvexPiece& blocker, const std::vector<V3>& w) const {
+    const auto& ov = blocker.vertices;
+    if (Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_) == 0) return std::nullopt;  // edge-on
+    std::vector<V3> o;
+    for (std::size_t i = 0; i < ov.size(); ++i)
+      o.push_back({{FT(ov[i].x), FT(ov[i].y), FT(ov[i].z)}, &ov[i], LineId::segment(ov[i], ov[(i + 1) % ov.size()])});
+    for (std::size_t e = 0; e < w.size(); ++e) {
+      Vec m = cross(sub(w[e], p_), sub(w[(e + 1) % w.size()], p_));
+      if (inside_ < 0) m = {-m[0], -m[1], -m[2]};
+      SignedValues<FT> f;
+      for (std::size_t q = 0; q < o.size(); ++q) {
+        FT value = dot(m, sub(o[q], p_));
+        const int s = cone_side(o[q], o[(q + o.size() - 1) % o.size()].out, w[e].out, int(e), value);
+        f.push(std::move(value), s);
+      }
+      if (!f.any_positive) return std::nullopt;
+      if (f.any_negative) o = keep_side(o, f, +1, LineId::cone(int(e)));
+    }
+    const auto& wv = piece_.vertices;
+    const FT minus_h = dot(N_, sub(w0_, p_));
+    std::vector<V2> shadow;
+    for (const V3& x : o) {
+      // An input vertex in the aperture's plane is its own projection.
+      if (x.input && Signs::orient3(wv[0], wv[piece_.base_b], wv[piece_.base_c], *x.input) == 0) {
+        shadow.push_back({x[i_], x[j_], x.input, true, x.out});
+        continue;
+      }
+      const Vec d = sub(x, p_);
+      const FT t = minus_h / dot(N_, d);
+      shadow.push_back({p_[i_] + d[i_] * t, p_[j_] + d[j_] * t, x.input, false, x.out});
+    }
+    FT area2(0);
+    for (std::size_t a = 1; a + 1 < shadow.size(); ++a)
+      area2 += (shadow[a].u - shadow[0].u) * (shadow[a + 1].v - shadow[0].v) -
+               (shadow[a + 1].u - shadow[0].u) * (shadow[a].v - shadow[0].v);
+    const int orientation = sign_of(area2);
+    if (orientation == 0) return std::nullopt;
+    if (orientation < 0) reverse_loop(shadow);
+    return shadow;
+  }
+
+  // Sign of x against the line of shadow edge (a, b), identity L, positive inside the shadow.
+  int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, const FT& value) const {
+    if constexpr (kSymbolic) {
+      if (same_line(x.out, L) || same_line(x_in, L)) return 0;
+      if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
+      if (L.kind == LineId::Kind::segment && x.at &&
+          (*x.at == *L.a || *x.at == *L.b || Signs::orient3(p_in_, *L.a, *L.b, *x.at) == 0))
+        return 0;
+    }
+    return sign_of(value);
+  }
+
+  // P − C for convex P and C (both counter-clockwise), appended to `out` as convex pieces.
+  void subtract(const std::vector<V2>& P, const std::vector<V2>& C, std::vector<std::vector<V2>>& out) const {
+    std::vector<V2> rest = P;
+    for (std::size_t e = 0; e < C.size(); ++e) {
+      const V2& a = C[e];
+      const V2& b = C[(e + 1) % C.size()];
+      // A cut by the view cone lies on the aperture's boundary: all of P is on its inner side.
+      if (kSymbolic && a.out.kind == LineId::Kind::cone) continue;
+      const FT du = b.u - a.u, dv = b.v - a.v;
+      SignedValues<FT> side;
+      for (std::size_t q = 0; q < rest.size(); ++q) {
+        const V2& x = rest[q];
+        FT value = du * (x.v - a.v) - dv * (x.u - a.u);
+        const int s = line_side(x, rest[(q + rest.size() - 1) % rest.size()].out, a, b, a.out, value);
+        side.push(std::move(value), s);
+      }
+      if (!side.any_negative) continue;
+      if (!side.any_positive) {
+        out.push_back(std::move(rest));
+        return;
+      }
+      out.push_back(keep_side(rest, side, -1, a.out));
+      rest = keep_side(rest, side, +1, a.out);
+    }
+    // What remains lies inside C: in shadow.
+  }
+
+  // Normal of the plane through p that contains line L (every line here lies in such a plane:
+  // its projection from p is what the subtraction cut along). Zero for an unknown line.
+  Vec plane_through_p(const LineId& L) const {
+    switch (L.kind) {
+      case LineId::Kind::segment: return cross(sub3(*L.a), sub3(*L.b));
+      case LineId::Kind::hemisphere: return to3(n_in_);
+      case LineId::Kind::horizon: return {FT(0), FT(0), FT(1)};
+      case LineId::Kind::cone: return plane_through_p(cone_lines_[L.cone_edge]);
+      default: return {FT(0), FT(0), FT(0)};
+    }
+  }
+  Vec sub3(const Vec3& a) const { return {FT(a.x) - p_[0], FT(a.y) - p_[1], FT(a.z) - p_[2]}; }
+
+  // Direction d = X − p to a vertex X of a visible piece, built afresh from what defines the
+  // vertex rather than from the chain of constructions that found it (whose intervals widen):
+  // an input vertex in the aperture's plane, the projection of an input vertex, or the meeting
+  // point of the two lines of its edges. With M1, M2 the normals of their planes through p,
+  // d = (M1 × M2) · (−h) / (N · (M1 × M2)) puts d on the aperture's plane.
+  std::array<FT, 3> direction(const V2& x, const LineId& in) const {
+    const FT minus_h = dot(N_, sub(w0_, p_));
+    if (x.in_plane) return sub3(*x.at);
+    Vec d;
+    if (x.at) {
+      d = sub3(*x.at);
+    } else {
+      d = cross(plane_through_p(in), plane_through_p(x.out));
+      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) {
+        // No two known lines: lift the constructed coordinates,
+        // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
+        d[i_] = x.u - p_[i_];
+        d[j_] = x.v - p_[j_];
+        d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_] - p_[k_];
+        return d;
+      }
+    }
+    const FT t = minus_h / dot(N_, d);
+    return {d[0] * t, d[1] * t, d[2] * t};
+  }
+
+  // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
+  DirectionLoop directions(const std::vector<V2>& P) const {
+    DirectionLoop loop;
+    loop.reserve(P.size());
+    for (std::size_t q = 0; q < P.size(); ++q) {
+      const auto d = direction(P[q], P[(q + P.size() - 1) % P.size()].out);
+      double scale = 0;
+      for (const FT& c : d) scale = std::max(scale, std::abs(CGAL::to_double(c)));
+      loop.push_back({round_to_double(d[0], scale), round_to_double(d[1], scale), round_to_double(d[2], scale)});
+    }
+    if (sh_ > 0) std::reverse(loop.begin(), loop.end());
+    return loop;
+  }
+
+  Vec3 p_in_, n_in_;
+  const ConvexPiece& piece_;
+  int sh_, inside_, k_, i_, j_;
+  Vec p_;
+  V3 w0_;
+  Vec N_;
+  std::vector<LineId> cone_lines_;  // the line of each edge of the clipped aperture piece
+};
+
+}  // namespace daylit::clipping
