@@ -90,13 +90,19 @@ struct LineId {
   static LineId named(Kind k) { return {k, -1, nullptr, nullptr}; }
 };
 
-// Equal identities mean the same line. Segments compare by endpoint values, so the shared edge
-// of two occluder pieces (two triangles of one wall, two faces of a box) is recognised.
+// Whether two identities denote the same line. Segments are the same line when their endpoints
+// are collinear (an exact predicate), so the shared edge of two occluder pieces (two triangles of
+// one wall, two faces of a box) and collinear edges of different lengths (a ceiling tiled around
+// openings) are recognised.
 inline bool same_line(const LineId& x, const LineId& y) {
   if (x.kind != y.kind || x.kind == LineId::Kind::unknown) return false;
   if (x.kind == LineId::Kind::cone) return x.cone_edge == y.cone_edge;
-  if (x.kind == LineId::Kind::segment)
-    return (*x.a == *y.a && *x.b == *y.b) || (*x.a == *y.b && *x.b == *y.a);
+  if (x.kind == LineId::Kind::segment) {
+    if ((*x.a == *y.a && *x.b == *y.b) || (*x.a == *y.b && *x.b == *y.a)) return true;
+    using predicates::point3;
+    return CGAL::collinear(point3(*x.a), point3(*x.b), point3(*y.a)) &&
+           CGAL::collinear(point3(*x.a), point3(*x.b), point3(*y.b));
+  }
   return true;
 }
 
@@ -257,9 +263,54 @@ class ShadowClipper {
     return true;
   }
 
+  // The sign of `value`, with `symbolic` (exact reasoning on the input: a sign, or nothing) as
+  // the help. Intervals ask for help only when they cannot decide, lazy rationals before they
+  // would evaluate exactly; the float path never does. Throws when intervals cannot decide alone.
+  template <class Symbolic>
+  static int decide(const FT& value, const Symbolic& symbolic) {
+    if constexpr (std::is_same_v<FT, double>) {
+      return sign_of(value);
+    } else if constexpr (std::is_same_v<FT, Interval>) {
+      const auto s = CGAL::sign(value);
+      if (CGAL::is_certain(s)) return int(CGAL::get_certain(s));
+      if (const std::optional<int> exact = symbolic()) return *exact;
+      throw CGAL::Uncertain_conversion_exception("uncertain sign");
+    } else {
+      if (const std::optional<int> exact = symbolic()) return *exact;
+      return sign_of(value);
+    }
+  }
+
+  // Normal of the plane through p that contains line L, from the input doubles in number type T.
+  template <class T>
+  std::array<T, 3> plane_normal(const LineId& L) const {
+    const auto rel = [&](const Vec3& a) { return std::array<T, 3>{T(a.x) - T(p_in_.x), T(a.y) - T(p_in_.y), T(a.z) - T(p_in_.z)}; };
+    switch (L.kind) {
+      case LineId::Kind::segment: {
+        const auto a = rel(*L.a), b = rel(*L.b);
+        return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      }
+      case LineId::Kind::hemisphere: return {T(n_in_.x), T(n_in_.y), T(n_in_.z)};
+      case LineId::Kind::horizon: return {T(0), T(0), T(1)};
+      default: return plane_normal<T>(cone_lines_[L.cone_edge]);
+    }
+  }
+
+  // Whether the planes through p of three lines share a line (det[M_A, M_B, M_C] = 0, exactly):
+  // then a vertex where lines A and B meet lies on (the projection of) line C.
+  bool planes_share_line(const LineId& A, const LineId& B, const LineId& C) const {
+    for (const LineId* L : {&A, &B, &C})
+      if (L->kind == LineId::Kind::unknown) return false;
+    return predicates::filtered_sign([&](auto zero) {
+             using T = decltype(zero);
+             const auto a = plane_normal<T>(A), b = plane_normal<T>(B), c = plane_normal<T>(C);
+             return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+           }) == 0;
+  }
+
   // Sign of x against side plane e of the cone (through p and edge e of w, positive inside).
   int cone_side(const V3& x, const LineId& x_in, const LineId& edge, int e, const FT& value) const {
-    if constexpr (kSymbolic) {
+    return decide(value, [&]() -> std::optional<int> {
       const LineId cone = LineId::cone(e);
       if (same_line(x.out, cone) || same_line(x_in, cone)) return 0;
       if (x.input) {
@@ -267,11 +318,12 @@ class ShadowClipper {
           case LineId::Kind::segment: return inside_ * Signs::orient3(p_in_, *edge.a, *edge.b, *x.input);
           case LineId::Kind::horizon: return sign_of(x.input->z - p_in_.z);
           case LineId::Kind::hemisphere: return Signs::dot_diff(n_in_, *x.input, p_in_);
-          default: break;
+          default: return std::nullopt;
         }
       }
-    }
-    return sign_of(value);
+      if (!same_line(x_in, x.out) && planes_share_line(x_in, x.out, cone)) return 0;
+      return std::nullopt;
+    });
   }
 
   // The blocker clipped to the cone over w and projected onto the aperture's plane, counter-
@@ -319,14 +371,15 @@ class ShadowClipper {
 
   // Sign of x against the line of shadow edge (a, b), identity L, positive inside the shadow.
   int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, const FT& value) const {
-    if constexpr (kSymbolic) {
+    return decide(value, [&]() -> std::optional<int> {
       if (same_line(x.out, L) || same_line(x_in, L)) return 0;
       if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
-      if (L.kind == LineId::Kind::segment && x.at &&
-          (*x.at == *L.a || *x.at == *L.b || Signs::orient3(p_in_, *L.a, *L.b, *x.at) == 0))
-        return 0;
-    }
-    return sign_of(value);
+      if (L.kind == LineId::Kind::segment && x.at)
+        return (*x.at == *L.a || *x.at == *L.b || Signs::orient3(p_in_, *L.a, *L.b, *x.at) == 0) ? std::optional<int>(0)
+                                                                                                : std::nullopt;
+      if (!same_line(x_in, x.out) && planes_share_line(x_in, x.out, L)) return 0;
+      return std::nullopt;
+    });
   }
 
   // P − C for convex P and C (both counter-clockwise), appended to `out` as convex pieces.
@@ -376,22 +429,28 @@ class ShadowClipper {
   // d = (M1 × M2) · (−h) / (N · (M1 × M2)) puts d on the aperture's plane.
   std::array<FT, 3> direction(const V2& x, const LineId& in) const {
     const FT minus_h = dot(N_, sub(w0_, p_));
+    // Without two known lines (and always on the float path): lift the constructed coordinates,
+    // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
+    const auto lifted = [&] {
+      Vec d;
+      d[i_] = x.u - p_[i_];
+      d[j_] = x.v - p_[j_];
+      d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_] - p_[k_];
+      return d;
+    };
     if (x.in_plane) return sub3(*x.at);
+    if (!kSymbolic) return lifted();
     Vec d;
     if (x.at) {
       d = sub3(*x.at);
     } else {
+      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) return lifted();
       d = cross(plane_through_p(in), plane_through_p(x.out));
-      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) {
-        // No two known lines: lift the constructed coordinates,
-        // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
-        d[i_] = x.u - p_[i_];
-        d[j_] = x.v - p_[j_];
-        d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_] - p_[k_];
-        return d;
-      }
     }
-    const FT t = minus_h / dot(N_, d);
+    const FT along = dot(N_, d);
+    // Planes that coincide define no point (an interval containing zero throws here).
+    if (sign_of(along) == 0) return lifted();
+    const FT t = minus_h / along;
     return {d[0] * t, d[1] * t, d[2] * t};
   }
 

@@ -5,6 +5,8 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <cmath>
+#include <string>
 #include <mutex>
 
 namespace daylit {
@@ -16,7 +18,14 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
     const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
     if (!region.empty()) irradiance += scene.apertures[a].transmittance * sky_irradiance(region, sensor.normal, sky);
   }
-  return 100 * irradiance / unobstructed_horizontal_irradiance(sky);
+  const double percent = 100 * irradiance / unobstructed_horizontal_irradiance(sky);
+  // Only the float path can get here with a non-finite value (a division its rounding made
+  // zero); never report it as a result.
+  if (!std::isfinite(percent))
+    throw Error("non-finite sky component at sensor (" + std::to_string(sensor.position.x) + ", " +
+                std::to_string(sensor.position.y) + ", " + std::to_string(sensor.position.z) +
+                ") with float geometry; use --geometry exact");
+  return percent;
 }
 
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
