@@ -38,6 +38,50 @@ using clipping::Interval;
 using clipping::LazyExact;
 
 // ---------------------------------------------------------------------------------------------
+// Unobstructed pairs: the aperture piece clipped to the receiver's tangent plane and horizon,
+// nothing else. Both planes pass through p, so the clip runs on the directions d = v − p
+// themselves, in double, with the signs at input vertices decided by Signs. No provenance, no
+// allocation beyond the loop returned: the common case in real buildings must cost little.
+
+template <class Signs>
+bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, SphericalRegion& region) {
+  constexpr std::size_t kMax = 64;
+  const auto& v = piece.vertices;
+  if (v.size() + 2 > kMax) return false;  // the general clipper takes such a piece
+  std::array<Vec3, kMax> a, b;
+  std::array<double, kMax> f;
+  std::array<int, kMax> s;
+  std::size_t m = v.size();
+  for (std::size_t i = 0; i < m; ++i) a[i] = v[i] - p;
+  for (int plane = 0; plane < 2; ++plane) {
+    if (plane == 1 && n.x == 0 && n.y == 0) break;  // for an upward receiver the planes coincide
+    bool any_positive = false, any_negative = false;
+    for (std::size_t i = 0; i < m; ++i) {
+      // Plane 0 (n·d ≥ 0) meets only input vertices: exact signs. Plane 1 (d_z ≥ 0): the sign of
+      // a rounded difference is exact for input vertices, and as good as double for the others.
+      f[i] = plane == 0 ? dot(n, a[i]) : a[i].z;
+      s[i] = plane == 0 ? Signs::dot_diff(n, v[i], p) : predicates::sign_of(f[i]);
+      any_positive |= s[i] > 0;
+      any_negative |= s[i] < 0;
+    }
+    if (!any_positive) return true;
+    if (!any_negative) continue;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t j = (i + 1) % m;
+      if (s[i] >= 0) b[k++] = a[i];
+      if (s[i] * s[j] < 0) b[k++] = a[i] + (f[i] / (f[i] - f[j])) * (a[j] - a[i]);
+    }
+    a = b;
+    m = k;
+  }
+  DirectionLoop loop(a.begin(), a.begin() + m);
+  if (sh > 0) std::reverse(loop.begin(), loop.end());
+  region.loops.push_back(std::move(loop));
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Culling hierarchy.
 
 struct Box {
@@ -201,7 +245,8 @@ struct VisibilityEngine::Impl {
     collect<Signs>(p, n, w, sh, blockers, counters);
     if (blockers.empty()) {
       ++counters.pairs_unobstructed;
-      clipping::ShadowClipper<double, Signs>(p, n, w, sh).run(blockers, region);
+      if (!unobstructed_directions<Signs>(p, n, w, sh, region))
+        clipping::ShadowClipper<double, Signs>(p, n, w, sh).run(blockers, region);
     } else {
       ++counters.pairs_clipped;
       counters.occluders_clipped += blockers.size();

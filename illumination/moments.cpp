@@ -1,6 +1,7 @@
 #include "illumination/moments.hpp"
 
 #include <algorithm>
+#include <array>
 
 #include "illumination/arc_power_integral.hpp"
 
@@ -109,9 +110,9 @@ template <class R>
 bool well_conditioned(const Sum<R>& s, double kappa_limit) {
   return s.magnitude <= R(kappa_limit) * real::abs(s.value);
 }
-template <class R>
-bool well_conditioned(const std::vector<Sum<R>>& sums, double kappa_limit) {
-  return std::all_of(sums.begin(), sums.end(), [&](const Sum<R>& s) { return well_conditioned(s, kappa_limit); });
+template <class Sums>
+bool well_conditioned(const Sums& sums, double kappa_limit) {
+  return std::all_of(sums.begin(), sums.end(), [&](const auto& s) { return well_conditioned(s, kappa_limit); });
 }
 
 double to_double(const Sum<double>& s) { return s.value; }
@@ -123,6 +124,12 @@ template <class R>
 std::vector<double> to_double(const std::vector<Sum<R>>& sums) {
   std::vector<double> out;
   for (const auto& s : sums) out.push_back(double(s.value));
+  return out;
+}
+template <class R, std::size_t N>
+std::array<double, N> to_double(const std::array<Sum<R>, N>& sums) {
+  std::array<double, N> out;
+  for (std::size_t i = 0; i < N; ++i) out[i] = double(sums[i].value);
   return out;
 }
 
@@ -141,7 +148,34 @@ auto with_escalation(F&& compute) {
 #endif
 }
 
+// Both sums of cosine_moments(): [0] = ∫(n·u), [1] = ∫(w·u)(n·u) by Arvo's eq. 14 with n = 1:
+// 3 ∫(w·u)(n·u) = (w·n) σ + Σ (n·m) ∫_arc (w·u) ds.
+template <class R>
+std::array<Sum<R>, 2> cosine_moment_sums(const SphericalRegion& region, const Vec3& n_in, const Vec3& w_in) {
+  const real::V3<R> n(n_in), w(w_in);
+  std::array<Sum<R>, 2> sums;
+  Sum<R> boundary;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
+    const R nm = dot(n, arc.normal);
+    sums[0].add(R(0.5) * arc.length * nm);
+    // ∫_arc (w·u) ds = (w·a) sin θ + (w·s_a)(1 − cos θ): arc_power_integrals() at order 1.
+    boundary.add(nm * (dot(w, arc.start) * arc.sin_length + dot(w, arc.start_tangent) * arc.one_minus_cos));
+  });
+  const R wn = dot(w, n);
+  const Sum<R> sigma = solid_angle_sum<R>(region);
+  sums[1].add(wn * sigma.value, real::abs(wn) * sigma.magnitude);
+  sums[1].add(boundary.value, boundary.magnitude);
+  sums[1].value /= R(3);
+  sums[1].magnitude /= R(3);
+  return sums;
+}
+
 }  // namespace
+
+CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w) {
+  const auto m = with_escalation([&](auto r) { return cosine_moment_sums<decltype(r)>(region, n, w); });
+  return {m[0], m[1]};
+}
 
 double lambert(const SphericalRegion& region, const Vec3& n) {
   return with_escalation([&](auto r) { return lambert_sum<decltype(r)>(region, n); });

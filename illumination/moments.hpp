@@ -29,6 +29,15 @@ std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, 
 //     (n + 2) τ^{n,1} = n (w·v) τ^{n−1} + Σ_edges (v·m) ∫_arc (w·u)^n ds.
 double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n);
 
+// ∫_A (n·u) dσ and ∫_A (w·u)(n·u) dσ together, in one pass over the edges: the two moments a
+// sky luminance linear in u needs (the CIE overcast sky). Same formulas as lambert() and
+// double_axis_moment(region, w, n, 1), same accuracy.
+struct CosineMoments {
+  double cosine;         // ∫ (n·u) dσ
+  double cosine_linear;  // ∫ (w·u)(n·u) dσ
+};
+CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w);
+
 // Which precision the last call on this thread needed: 0 double, 1 long double, 2 __float128.
 // For benchmarks and reports of how often cancellation forced an escalation.
 int last_moment_precision() noexcept;

@@ -19,10 +19,9 @@ std::string_view sky_model_name(SkyModel sky) noexcept {
 
 double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky) {
   if (region.empty()) return 0;
-  const double cosine = lambert(region, n);
-  if (sky == SkyModel::uniform) return cosine;
-  constexpr Vec3 zenith{0, 0, 1};
-  return (cosine + 2 * double_axis_moment(region, zenith, n, 1)) / 3;
+  if (sky == SkyModel::uniform) return lambert(region, n);
+  const CosineMoments m = cosine_moments(region, n, {0, 0, 1});
+  return (m.cosine + 2 * m.cosine_linear) / 3;
 }
 
 double unobstructed_horizontal_irradiance(SkyModel sky) noexcept {
