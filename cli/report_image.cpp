@@ -70,7 +70,12 @@ void write_falsecolour_image(const std::string& path, const GridReport& report) 
   const int map_w = std::max(1, int(std::lround(width_m * pixels_per_m)));
   const int map_h = std::max(1, int(std::lround(height_m * pixels_per_m)));
 
-  const double scale_max = nice_ceiling(report.statistics.max);
+  // Colour scale up to a round number above the 95th percentile, so that a few bright sensors by
+  // a window do not leave the rest of the room in one colour; higher values show at the top
+  // colour and the legend's top label says "+".
+  std::vector<double> sorted = report.df_percent;
+  std::sort(sorted.begin(), sorted.end());
+  const double scale_max = nice_ceiling(sorted[std::size_t(0.95 * double(sorted.size() - 1))]);
   OIIO::ImageBuf values(OIIO::ImageSpec(map_w, map_h, 1, OIIO::TypeDesc::FLOAT));
   std::vector<char> covered(std::size_t(map_w) * map_h, 0);
   for (std::size_t i = 0; i < sensors.size(); ++i) {
@@ -131,7 +136,7 @@ void write_falsecolour_image(const std::string& path, const GridReport& report) 
     const int y = bar_y + int(std::lround((bar_h - 1) * (1 - t / 4.0)));
     for (int x = bar_w; x < bar_w + 6; ++x) canvas.setpixel(bar_x + x, y, black, 3);
     const double label = scale_max * t / 4.0;
-    text(canvas, bar_x + bar_w + 10, y + 5, fmt::format("{:g} %{}", label, t == 4 && st.max >= scale_max ? "+" : ""), 14);
+    text(canvas, bar_x + bar_w + 10, y + 5, fmt::format("{:g} %{}", label, t == 4 && st.max > scale_max ? "+" : ""), 14);
   }
   text(canvas, bar_x, bar_y + bar_h + 24, "DF (%)", 14);
 

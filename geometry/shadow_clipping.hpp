@@ -120,6 +120,7 @@ struct Vertex3 {
   const Vec3* input = nullptr;  // this vertex is an input vertex
   LineId out;                   // the line of the edge to the next vertex
   const FT& operator[](int i) const { return c[i]; }
+  std::array<FT, 3> c3() const { return {c[0], c[1], c[2]}; }
 };
 
 template <class FT>
@@ -202,10 +203,11 @@ class ShadowClipper {
   // Appends the visible part of the piece, as positively oriented loops, to `region`.
   void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region) {
     const auto& wv = piece_.vertices;
-    p_ = to3(p_in_);
     std::vector<Vertex3<FT>> w;
-    for (std::size_t e = 0; e < wv.size(); ++e)
-      w.push_back({{FT(wv[e].x), FT(wv[e].y), FT(wv[e].z)}, &wv[e], LineId::segment(wv[e], wv[(e + 1) % wv.size()])});
+    for (std::size_t e = 0; e < wv.size(); ++e) {
+      const Vec r = relative(wv[e]);
+      w.push_back({{r[0], r[1], r[2]}, &wv[e], LineId::segment(wv[e], wv[(e + 1) % wv.size()])});
+    }
     w0_ = w[0];
     N_ = cross(sub(w[piece_.base_b], w0_), sub(w[piece_.base_c], w0_));
     if (!clip_to_receiver(w)) return;
@@ -232,7 +234,10 @@ class ShadowClipper {
   using Vec = std::array<FT, 3>;
 
   static Vec to3(const Vec3& v) { return {FT(v.x), FT(v.y), FT(v.z)}; }
-  static Vec sub(const V3& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  // Coordinates relative to the receiver: all constructions happen in this frame, so that a model
+  // placed at georeferenced coordinates (1e6 m from its origin) keeps its digits. In intervals the
+  // difference of two doubles is enclosed to an ulp of itself; in rationals it is exact.
+  Vec relative(const Vec3& v) const { return {FT(v.x) - FT(p_in_.x), FT(v.y) - FT(p_in_.y), FT(v.z) - FT(p_in_.z)}; }
   static Vec sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
   static FT dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
   static Vec cross(const Vec& a, const Vec& b) {
@@ -244,7 +249,7 @@ class ShadowClipper {
     const Vec n = to3(n_in_);
     SignedValues<FT> front;
     for (const V3& x : w) {
-      FT value = dot(n, sub(x, p_));
+      FT value = dot(n, x.c3());
       const int s = kSymbolic && x.input ? Signs::dot_diff(n_in_, *x.input, p_in_) : sign_of(value);
       front.push(std::move(value), s);
     }
@@ -254,7 +259,7 @@ class ShadowClipper {
     if (n_in_.x == 0 && n_in_.y == 0) return true;
     SignedValues<FT> above;
     for (const V3& x : w) {
-      FT value = x[2] - p_[2];
+      FT value = x[2];
       const int s = kSymbolic && x.input ? sign_of(x.input->z - p_in_.z) : sign_of(value);
       above.push(std::move(value), s);
     }
@@ -322,6 +327,26 @@ class ShadowClipper {
         }
       }
       if (!same_line(x_in, x.out) && planes_share_line(x_in, x.out, cone)) return 0;
+      // x where an occluder edge A meets cone plane B: x − p = (a − p) + s (b − a) with
+      // M_B·(x − p) = 0, so by the Binet–Cauchy identity M_E·(x − p) = det[M_E, M_B, M_A] / (M_B·(b − a)),
+      // a sign decided exactly on the input (M_E oriented positive inside, M_A = (a − p) × (b − p)).
+      const LineId* A = x_in.kind == LineId::Kind::segment ? &x_in : (x.out.kind == LineId::Kind::segment ? &x.out : nullptr);
+      const LineId* B = x_in.kind == LineId::Kind::cone ? &x_in : (x.out.kind == LineId::Kind::cone ? &x.out : nullptr);
+      if (A && B && B->cone_edge != e) {
+        const int det = predicates::filtered_sign([&](auto zero) {
+          using T = decltype(zero);
+          auto E = plane_normal<T>(edge);
+          if (edge.kind == LineId::Kind::segment && inside_ < 0) E = {-E[0], -E[1], -E[2]};
+          const auto b = plane_normal<T>(*B), a = plane_normal<T>(*A);
+          return E[0] * (b[1] * a[2] - b[2] * a[1]) + E[1] * (b[2] * a[0] - b[0] * a[2]) + E[2] * (b[0] * a[1] - b[1] * a[0]);
+        });
+        const int along = predicates::filtered_sign([&](auto zero) {
+          using T = decltype(zero);
+          const auto b = plane_normal<T>(*B);
+          return b[0] * (T(A->b->x) - T(A->a->x)) + b[1] * (T(A->b->y) - T(A->a->y)) + b[2] * (T(A->b->z) - T(A->a->z));
+        });
+        if (along != 0) return det * along;
+      }
       return std::nullopt;
     });
   }
@@ -332,14 +357,16 @@ class ShadowClipper {
     const auto& ov = blocker.vertices;
     if (Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_) == 0) return std::nullopt;  // edge-on
     std::vector<V3> o;
-    for (std::size_t i = 0; i < ov.size(); ++i)
-      o.push_back({{FT(ov[i].x), FT(ov[i].y), FT(ov[i].z)}, &ov[i], LineId::segment(ov[i], ov[(i + 1) % ov.size()])});
+    for (std::size_t i = 0; i < ov.size(); ++i) {
+      const Vec r = relative(ov[i]);
+      o.push_back({{r[0], r[1], r[2]}, &ov[i], LineId::segment(ov[i], ov[(i + 1) % ov.size()])});
+    }
     for (std::size_t e = 0; e < w.size(); ++e) {
-      Vec m = cross(sub(w[e], p_), sub(w[(e + 1) % w.size()], p_));
+      Vec m = cross(w[e].c3(), w[(e + 1) % w.size()].c3());
       if (inside_ < 0) m = {-m[0], -m[1], -m[2]};
       SignedValues<FT> f;
       for (std::size_t q = 0; q < o.size(); ++q) {
-        FT value = dot(m, sub(o[q], p_));
+        FT value = dot(m, o[q].c3());
         const int s = cone_side(o[q], o[(q + o.size() - 1) % o.size()].out, w[e].out, int(e), value);
         f.push(std::move(value), s);
       }
@@ -347,7 +374,7 @@ class ShadowClipper {
       if (f.any_negative) o = keep_side(o, f, +1, LineId::cone(int(e)));
     }
     const auto& wv = piece_.vertices;
-    const FT minus_h = dot(N_, sub(w0_, p_));
+    const FT minus_h = dot(N_, w0_.c3());
     std::vector<V2> shadow;
     for (const V3& x : o) {
       // An input vertex in the aperture's plane is its own projection.
@@ -355,16 +382,14 @@ class ShadowClipper {
         shadow.push_back({x[i_], x[j_], x.input, true, x.out});
         continue;
       }
-      const Vec d = sub(x, p_);
-      const FT t = minus_h / dot(N_, d);
-      shadow.push_back({p_[i_] + d[i_] * t, p_[j_] + d[j_] * t, x.input, false, x.out});
+      const FT t = minus_h / dot(N_, x.c3());
+      shadow.push_back({x[i_] * t, x[j_] * t, x.input, false, x.out});
     }
-    FT area2(0);
-    for (std::size_t a = 1; a + 1 < shadow.size(); ++a)
-      area2 += (shadow[a].u - shadow[0].u) * (shadow[a + 1].v - shadow[0].v) -
-               (shadow[a + 1].u - shadow[0].u) * (shadow[a].v - shadow[0].v);
-    const int orientation = sign_of(area2);
-    if (orientation == 0) return std::nullopt;
+    // Orientation of the shadow, from an exact predicate rather than its area: with A', B', C' the
+    // projections of A, B, C, det[A'−p, B'−p, C'−p] = t_A t_B t_C det[A−p, B−p, C−p], t > 0 in the
+    // cone, which gives sign(orientation in the aperture's plane) = sh · orient3(o0, o_b, o_c, p).
+    // Clipping kept the occluder's vertex order; positive area is guaranteed by the clip's signs.
+    const int orientation = sh_ * Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_);
     if (orientation < 0) reverse_loop(shadow);
     return shadow;
   }
@@ -420,7 +445,7 @@ class ShadowClipper {
       default: return {FT(0), FT(0), FT(0)};
     }
   }
-  Vec sub3(const Vec3& a) const { return {FT(a.x) - p_[0], FT(a.y) - p_[1], FT(a.z) - p_[2]}; }
+  Vec sub3(const Vec3& a) const { return relative(a); }
 
   // Direction d = X − p to a vertex X of a visible piece, built afresh from what defines the
   // vertex rather than from the chain of constructions that found it (whose intervals widen):
@@ -428,14 +453,14 @@ class ShadowClipper {
   // point of the two lines of its edges. With M1, M2 the normals of their planes through p,
   // d = (M1 × M2) · (−h) / (N · (M1 × M2)) puts d on the aperture's plane.
   std::array<FT, 3> direction(const V2& x, const LineId& in) const {
-    const FT minus_h = dot(N_, sub(w0_, p_));
+    const FT minus_h = dot(N_, w0_.c3());
     // Without two known lines (and always on the float path): lift the constructed coordinates,
     // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
     const auto lifted = [&] {
       Vec d;
-      d[i_] = x.u - p_[i_];
-      d[j_] = x.v - p_[j_];
-      d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_] - p_[k_];
+      d[i_] = x.u;
+      d[j_] = x.v;
+      d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_];
       return d;
     };
     if (x.in_plane) return sub3(*x.at);
@@ -471,8 +496,7 @@ class ShadowClipper {
   Vec3 p_in_, n_in_;
   const ConvexPiece& piece_;
   int sh_, inside_, k_, i_, j_;
-  Vec p_;
-  V3 w0_;
+    V3 w0_;
   Vec N_;
   std::vector<LineId> cone_lines_;  // the line of each edge of the clipped aperture piece
 };

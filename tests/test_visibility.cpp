@@ -160,6 +160,41 @@ TEST_CASE("an occluder beyond the window and one in front of it both block") {
   CHECK(relative_error(exact, ref) < 1e-10);
 }
 
+TEST_CASE("a rooflight with flush reveals and kerb under a tiled ceiling shows the projection of its opening") {
+  // The hall sample's geometry: opening x ∈ [2.8, 5.2], y ∈ [2.2, 3.8] through a roof whose
+  // underside (z = 6) is tiled around it, reveals up to 6.4, kerb faces up to 6.7 flush with the
+  // opening, glazing at 6.7. From p the visible part is the glazing ∩ the projection of the
+  // opening at z = 6, scaled by s = (6.7 − p_z)/(6 − p_z) about p's foot point.
+  const double x0 = 2.8, x1 = 5.2, y0 = 2.2, y1 = 3.8;
+  Scene scene;
+  scene.apertures.push_back({polygon({{x0, y0, 6.7}, {x1, y0, 6.7}, {x1, y1, 6.7}, {x0, y1, 6.7}}, "glazing"), 1.0});
+  scene.occluders.push_back(polygon({{0, 0, 6}, {24, 0, 6}, {24, y0, 6}, {0, y0, 6}}, "tile south"));
+  scene.occluders.push_back(polygon({{0, y1, 6}, {24, y1, 6}, {24, 12, 6}, {0, 12, 6}}, "tile north"));
+  scene.occluders.push_back(polygon({{0, y0, 6}, {x0, y0, 6}, {x0, y1, 6}, {0, y1, 6}}, "tile west"));
+  scene.occluders.push_back(polygon({{x1, y0, 6}, {24, y0, 6}, {24, y1, 6}, {x1, y1, 6}}, "tile east"));
+  for (const auto& [lo, hi] : {std::pair{6.0, 6.4}, std::pair{6.4, 6.7}}) {
+    scene.occluders.push_back(polygon({{x0, y0, lo}, {x0, y1, lo}, {x0, y1, hi}, {x0, y0, hi}}, "west face"));
+    scene.occluders.push_back(polygon({{x1, y0, lo}, {x1, y0, hi}, {x1, y1, hi}, {x1, y1, lo}}, "east face"));
+    scene.occluders.push_back(polygon({{x0, y0, lo}, {x0, y0, hi}, {x1, y0, hi}, {x1, y0, lo}}, "south face"));
+    scene.occluders.push_back(polygon({{x0, y1, lo}, {x1, y1, lo}, {x1, y1, hi}, {x0, y1, hi}}, "north face"));
+  }
+  for (const Vec3 p : {Vec3{7.875, 5.375, 0.85}, Vec3{4.1, 3.1, 0.85}, Vec3{0.125, 0.125, 0.85}}) {
+    const long double s = (6.7L - p.z) / (6.0L - p.z);
+    const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * s; };
+    const long double u0 = std::max<long double>(x0, proj(x0, p.x)), u1 = std::min<long double>(x1, proj(x1, p.x));
+    const long double v0 = std::max<long double>(y0, proj(y0, p.y)), v1 = std::min<long double>(y1, proj(y1, p.y));
+    const long double ref =
+        u1 > u0 && v1 > v0 ? 100 * test::integrate_directions(test::lvec(p), {u0, v0, 6.7L}, {u1 - u0, 0, 0}, {0, v1 - v0, 0},
+                                                              [](const LVec3& u) { return (1 + 2 * u.z) / 3 * u.z; }) /
+                                 kEout
+                           : 0;
+    const double exact = sc(scene, p, GeometryMode::exact);
+    record("rooflight with flush reveals and kerb", exact, sc(scene, p, GeometryMode::floating), ref);
+    INFO("sensor " << p.x << " " << p.y << " " << p.z);
+    CHECK(relative_error(exact, ref) < 1e-10);
+  }
+}
+
 TEST_CASE("non-convex and seamed polygons are split into convex pieces that cover them") {
   const auto pieces = convex_pieces(wall_with_seam_hole(), 0);
   double area = 0;
