@@ -62,17 +62,19 @@ inline double round_to_double(const Interval& x, double scale) {
 // Within 2^-50 relative when the lazy interval is already that tight; otherwise the exact
 // rational rounded to nearest through MPFR (CGAL::to_double may return an interval midpoint far
 // from the value, and mpq_get_d truncates: DESIGN.md §7).
-inline double round_to_double(const LazyExact& x, double = 0) {
-  const auto [lo, hi] = CGAL::to_interval(x);
-  if (lo == hi) return lo;
-  if ((lo > 0 || hi < 0) && hi - lo <= 0x1p-50 * std::min(std::abs(lo), std::abs(hi))) return lo + 0.5 * (hi - lo);
-  const CGAL::Gmpq& q = x.exact();
+inline double round_rational(const CGAL::Gmpq& q) {
   mpfr_t r;
   mpfr_init2(r, 53);
   mpfr_set_q(r, q.mpq(), MPFR_RNDN);
   const double d = mpfr_get_d(r, MPFR_RNDN);
   mpfr_clear(r);
   return d;
+}
+inline double round_to_double(const LazyExact& x, double = 0) {
+  const auto [lo, hi] = CGAL::to_interval(x);
+  if (lo == hi) return lo;
+  if ((lo > 0 || hi < 0) && hi - lo <= 0x1p-50 * std::min(std::abs(lo), std::abs(hi))) return lo + 0.5 * (hi - lo);
+  return round_rational(x.exact());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -107,10 +109,18 @@ inline bool same_line(const LineId& x, const LineId& y) {
 }
 
 // The input vertex two segments share, if any: distinct lines through it meet there.
+// The input vertex where two segments' lines meet, if it is an endpoint of either (a shared
+// corner, or a T-junction such as a reveal edge ending on a long ceiling edge).
 inline const Vec3* shared_endpoint(const LineId& x, const LineId& y) {
   if (x.kind != LineId::Kind::segment || y.kind != LineId::Kind::segment || same_line(x, y)) return nullptr;
   if (*x.a == *y.a || *x.a == *y.b) return x.a;
   if (*x.b == *y.a || *x.b == *y.b) return x.b;
+  using predicates::point3;
+  const auto on = [](const Vec3& v, const LineId& L) { return CGAL::collinear(point3(*L.a), point3(*L.b), point3(v)); };
+  for (const Vec3* v : {x.a, x.b})
+    if (on(*v, y)) return v;
+  for (const Vec3* v : {y.a, y.b})
+    if (on(*v, x)) return v;
   return nullptr;
 }
 
@@ -213,7 +223,7 @@ class ShadowClipper {
     if (!clip_to_receiver(w)) return;
     for (const auto& x : w) cone_lines_.push_back(x.out);
 
-    std::vector<std::vector<Vertex2<FT>>> shadows;
+    std::vector<Shadow> shadows;
     for (const ConvexPiece* blocker : blockers)
       if (auto shadow = shadow_of(*blocker, w)) shadows.push_back(std::move(*shadow));
 
@@ -231,6 +241,12 @@ class ShadowClipper {
  private:
   using V3 = Vertex3<FT>;
   using V2 = Vertex2<FT>;
+  // A shadow, counter-clockwise; `reversed` when its edges run against the direction of the
+  // occluder edges they lie on (the projection reversed the occluder's orientation).
+  struct Shadow {
+    std::vector<V2> loop;
+    bool reversed;
+  };
   using Vec = std::array<FT, 3>;
 
   static Vec to3(const Vec3& v) { return {FT(v.x), FT(v.y), FT(v.z)}; }
@@ -353,7 +369,7 @@ class ShadowClipper {
 
   // The blocker clipped to the cone over w and projected onto the aperture's plane, counter-
   // clockwise; nothing if it has no area there.
-  std::optional<std::vector<V2>> shadow_of(const ConvexPiece& blocker, const std::vector<V3>& w) const {
+  std::optional<Shadow> shadow_of(const ConvexPiece& blocker, const std::vector<V3>& w) const {
     const auto& ov = blocker.vertices;
     if (Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_) == 0) return std::nullopt;  // edge-on
     std::vector<V3> o;
@@ -391,24 +407,46 @@ class ShadowClipper {
     // Clipping kept the occluder's vertex order; positive area is guaranteed by the clip's signs.
     const int orientation = sh_ * Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_);
     if (orientation < 0) reverse_loop(shadow);
-    return shadow;
+    return Shadow{std::move(shadow), orientation < 0};
   }
 
   // Sign of x against the line of shadow edge (a, b), identity L, positive inside the shadow.
-  int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, const FT& value) const {
+  // Exactly, from the input: with M_L = (L.a − p) × (L.b − p), a point with x − p along
+  // V − p (the projection of input vertex V) or along M1 × M2 (where the lines of its edges
+  // meet) has orient2(a, b, x) = −sh · μ · sign(M_L · (x − p)), μ = −1 when the shadow's edge runs
+  // against L.a → L.b; and x − p = −h (M1 × M2) / (N · (M1 × M2)) on the aperture's plane.
+  int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, bool reversed,
+                const FT& value) const {
     return decide(value, [&]() -> std::optional<int> {
       if (same_line(x.out, L) || same_line(x_in, L)) return 0;
       if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
-      if (L.kind == LineId::Kind::segment && x.at)
-        return (*x.at == *L.a || *x.at == *L.b || Signs::orient3(p_in_, *L.a, *L.b, *x.at) == 0) ? std::optional<int>(0)
-                                                                                                : std::nullopt;
-      if (!same_line(x_in, x.out) && planes_share_line(x_in, x.out, L)) return 0;
-      return std::nullopt;
+      if (L.kind != LineId::Kind::segment) return std::nullopt;
+      const int mu = reversed ? -1 : 1;
+      if (x.at) return -sh_ * mu * Signs::orient3(p_in_, *L.a, *L.b, *x.at);
+      if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
+        return std::nullopt;
+      const auto& wv = piece_.vertices;
+      const int along = predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
+        const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
+        const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
+        const T nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+        return nx * (m1[1] * m2[2] - m1[2] * m2[1]) + ny * (m1[2] * m2[0] - m1[0] * m2[2]) + nz * (m1[0] * m2[1] - m1[1] * m2[0]);
+      });
+      if (along == 0) return std::nullopt;
+      const int det = predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        const auto l = plane_normal<T>(L), m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
+        return l[0] * (m1[1] * m2[2] - m1[2] * m2[1]) + l[1] * (m1[2] * m2[0] - m1[0] * m2[2]) + l[2] * (m1[0] * m2[1] - m1[1] * m2[0]);
+      });
+      return mu * along * det;
     });
   }
 
   // P − C for convex P and C (both counter-clockwise), appended to `out` as convex pieces.
-  void subtract(const std::vector<V2>& P, const std::vector<V2>& C, std::vector<std::vector<V2>>& out) const {
+  void subtract(const std::vector<V2>& P, const Shadow& shadow, std::vector<std::vector<V2>>& out) const {
+    const std::vector<V2>& C = shadow.loop;
     std::vector<V2> rest = P;
     for (std::size_t e = 0; e < C.size(); ++e) {
       const V2& a = C[e];
@@ -420,7 +458,7 @@ class ShadowClipper {
       for (std::size_t q = 0; q < rest.size(); ++q) {
         const V2& x = rest[q];
         FT value = du * (x.v - a.v) - dv * (x.u - a.u);
-        const int s = line_side(x, rest[(q + rest.size() - 1) % rest.size()].out, a, b, a.out, value);
+        const int s = line_side(x, rest[(q + rest.size() - 1) % rest.size()].out, a, b, a.out, shadow.reversed, value);
         side.push(std::move(value), s);
       }
       if (!side.any_negative) continue;
@@ -479,14 +517,50 @@ class ShadowClipper {
     return {d[0] * t, d[1] * t, d[2] * t};
   }
 
+  // The same direction in number type T computed from the input doubles alone (nothing if the
+  // vertex is not known by its definition): in exact rationals, when an interval was too wide.
+  template <class T>
+  std::optional<std::array<T, 3>> direction_from_input(const V2& x, const LineId& in) const {
+    const auto rel = [&](const Vec3& a) { return std::array<T, 3>{T(a.x) - T(p_in_.x), T(a.y) - T(p_in_.y), T(a.z) - T(p_in_.z)}; };
+    if (x.in_plane) return rel(*x.at);
+    std::array<T, 3> d;
+    if (x.at) {
+      d = rel(*x.at);
+    } else {
+      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) return std::nullopt;
+      const auto a = plane_normal<T>(in), b = plane_normal<T>(x.out);
+      d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    }
+    const auto& wv = piece_.vertices;
+    const auto e1 = rel(wv[piece_.base_b]), e2 = rel(wv[piece_.base_c]), o = rel(wv[0]);
+    const std::array<T, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
+    const std::array<T, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
+    const T along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
+    if (CGAL::sign(along) == CGAL::ZERO) return std::nullopt;
+    const T t = (N[0] * o[0] + N[1] * o[1] + N[2] * o[2]) / along;
+    return std::array<T, 3>{d[0] * t, d[1] * t, d[2] * t};
+  }
+
   // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
   DirectionLoop directions(const std::vector<V2>& P) const {
     DirectionLoop loop;
     loop.reserve(P.size());
     for (std::size_t q = 0; q < P.size(); ++q) {
-      const auto d = direction(P[q], P[(q + P.size() - 1) % P.size()].out);
+      const LineId& in = P[(q + P.size() - 1) % P.size()].out;
+      const auto d = direction(P[q], in);
       double scale = 0;
       for (const FT& c : d) scale = std::max(scale, std::abs(CGAL::to_double(c)));
+      if constexpr (std::is_same_v<FT, Interval>) {
+        try {
+          loop.push_back({round_to_double(d[0], scale), round_to_double(d[1], scale), round_to_double(d[2], scale)});
+        } catch (const CGAL::Uncertain_conversion_exception&) {
+          // The vertex is certain, only its interval too wide: rebuild just it in rationals.
+          const auto exact = direction_from_input<CGAL::Gmpq>(P[q], in);
+          if (!exact) throw;
+          loop.push_back({round_rational((*exact)[0]), round_rational((*exact)[1]), round_rational((*exact)[2])});
+        }
+        continue;
+      }
       loop.push_back({round_to_double(d[0], scale), round_to_double(d[1], scale), round_to_double(d[2], scale)});
     }
     if (sh_ > 0) std::reverse(loop.begin(), loop.end());
