@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 
 #include "geometry/convex_pieces.hpp"
@@ -119,6 +120,35 @@ TEST_CASE("a reveal, whose inner edges are collinear with the window's, leaves t
     record("reveal of depth 0.3", exact, sc(scene, p, GeometryMode::floating), ref);
     INFO("sensor " << p.x << " " << p.y << " " << p.z);
     CHECK(relative_error(exact, ref) < 1e-10);
+  }
+}
+
+TEST_CASE("the reveal configuration placed at georeferenced coordinates keeps its answer") {
+  // Rotated about z by 0.7 rad and moved 5e5 m east, 5.4e6 m north, as a model in a projected
+  // coordinate system would be. Rounding the inputs there perturbs the geometry by about an ulp of
+  // 5.4e6 (1e-9 m), so the answer may move by ~1e-8 relative; beyond that, nothing may be lost.
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  const auto place = [&](const Vec3& v) { return Vec3{c * v.x - s * v.y + 512345.678, s * v.x + c * v.y + 5432109.876, v.z + 123.4}; };
+  const auto placed = [&](const Polygon& poly) {
+    Polygon out = poly;
+    for (auto& v : out.vertices) v = place(v);
+    return out;
+  };
+  const double d = 0.3;
+  Scene scene;
+  scene.apertures.push_back({placed(polygon(kWindow, "window")), 1.0});
+  for (auto& f : reveal(d)) scene.occluders.push_back(placed(f));
+  scene.occluders.push_back(placed(wall_with_seam_hole()));
+  for (const Vec3 p : {Vec3{0.5, 1.5, 0.85}, Vec3{1, 0.6, 1.5}, Vec3{3, 2, 0.5}}) {
+    const long double sc_scale = p.y / (p.y + d);
+    const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * sc_scale; };
+    const long double x0 = std::max<long double>(0, proj(0, p.x)), x1 = std::min<long double>(2, proj(2, p.x));
+    const long double z0 = std::max<long double>({1, proj(1, p.z), p.z}), z1 = std::min<long double>(2, proj(2, p.z));
+    const long double ref = reference_sc(p, x0, x1, z0, z1);
+    const Vec3 q = place(p);
+    const double exact = sc(scene, q, GeometryMode::exact);
+    record("reveal, rotated and at 5e6 m", exact, sc(scene, q, GeometryMode::floating), ref);
+    CHECK(relative_error(exact, ref) < 1e-7);
   }
 }
 
