@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "reference_quadrature.hpp"
+#include "test_scenes.hpp"
 #include "sky/sky_component.hpp"
 
 using namespace daylit;
@@ -18,13 +19,7 @@ namespace {
 
 constexpr long double kEout = 7 * std::numbers::pi_v<long double> / 9;
 
-Polygon rectangle(std::vector<Vec3> corners, std::string name = "r") {
-  Polygon p;
-  p.vertices = std::move(corners);
-  p.name = std::move(name);
-  p.where = {"test", 1};
-  return p;
-}
+using test::polygon;
 
 double sc_percent(const Scene& scene, const Vec3& p, const Vec3& n, GeometryMode mode = GeometryMode::exact) {
   const VisibilityEngine engine(scene, mode);
@@ -50,7 +45,7 @@ double relative_error(double value, long double reference) {
 
 TEST_CASE("overcast sky component through an unobstructed window matches quadrature to 1e-10") {
   Scene scene;
-  scene.apertures.push_back({rectangle({{0, 2, 1}, {2, 2, 1}, {2, 2, 2.2}, {0, 2, 2.2}}), 1.0});
+  scene.apertures.push_back({polygon({{0, 2, 1}, {2, 2, 1}, {2, 2, 2.2}, {0, 2, 2.2}}), 1.0});
   struct Case {
     Vec3 p, n;
   };
@@ -65,7 +60,7 @@ TEST_CASE("overcast sky component through an unobstructed window matches quadrat
 
 TEST_CASE("the part of a window below the sensor's horizon does not count") {
   Scene scene;
-  scene.apertures.push_back({rectangle({{0, 2, 0.3}, {2, 2, 0.3}, {2, 2, 2.2}, {0, 2, 2.2}}), 1.0});
+  scene.apertures.push_back({polygon({{0, 2, 0.3}, {2, 2, 0.3}, {2, 2, 2.2}, {0, 2, 2.2}}), 1.0});
   const Vec3 p{0.6, -1, 0.85};
   const double value = sc_percent(scene, p, {0, 0, 1});
   // Only z ∈ [0.85, 2.2] is sky.
@@ -78,8 +73,8 @@ TEST_CASE("an overhang beyond the window casts the shadow similar triangles pred
   // out hides everything above the line where the slab's outer edge projects:
   // z' = p_z + (2.2 − p_z) · 2/(2 + 1).
   Scene scene;
-  scene.apertures.push_back({rectangle({{0, 0, 1}, {2, 0, 1}, {2, 0, 2}, {0, 0, 2}}), 1.0});
-  scene.occluders.push_back(rectangle({{-50, 0, 2.2}, {52, 0, 2.2}, {52, -1, 2.2}, {-50, -1, 2.2}}, "overhang"));
+  scene.apertures.push_back({polygon({{0, 0, 1}, {2, 0, 1}, {2, 0, 2}, {0, 0, 2}}), 1.0});
+  scene.occluders.push_back(polygon({{-50, 0, 2.2}, {52, 0, 2.2}, {52, -1, 2.2}, {-50, -1, 2.2}}, "overhang"));
   const Vec3 p{0.8, 2, 0.85};
   const long double z_cut = 0.85L + (2.2L - 0.85L) * 2 / 3;
   const long double ref = reference_sc(p, {0, 0, 1}, {0, 0, 1}, {2, 0, 0}, {0, 0, z_cut - 1});
@@ -94,8 +89,8 @@ TEST_CASE("a pillar in front of the window subtracts its central projection exac
   // x ∈ [1, 1.4], z ∈ [0, 3]: seen from p it covers x' = p_x + (x − p_x)·2 on the window plane,
   // i.e. the full height of the window between x' = 0.5 and 1.3 when p_x = 1.5.
   Scene scene;
-  scene.apertures.push_back({rectangle({{0, 0, 1}, {3, 0, 1}, {3, 0, 2.5}, {0, 0, 2.5}}), 1.0});
-  scene.occluders.push_back(rectangle({{1, 1.5, 0}, {1.4, 1.5, 0}, {1.4, 1.5, 3.5}, {1, 1.5, 3.5}}, "pillar"));
+  scene.apertures.push_back({polygon({{0, 0, 1}, {3, 0, 1}, {3, 0, 2.5}, {0, 0, 2.5}}), 1.0});
+  scene.occluders.push_back(polygon({{1, 1.5, 0}, {1.4, 1.5, 0}, {1.4, 1.5, 3.5}, {1, 1.5, 3.5}}, "pillar"));
   const Vec3 p{1.5, 3, 0.85};
   const long double left = reference_sc(p, {0, 0, 1}, {0, 0, 1}, {0.5, 0, 0}, {0, 0, 1.5});
   const long double right = reference_sc(p, {0, 0, 1}, {1.3, 0, 1}, {1.7, 0, 0}, {0, 0, 1.5});
@@ -107,7 +102,7 @@ TEST_CASE("vertical sky component of an unobstructed vertical plane is (3π + 8)
   // A 2e7-wide aperture 1 m in front of a receiver facing +y: it misses O(1/L) of the sky.
   const double L = 1e7;
   Scene scene;
-  scene.apertures.push_back({rectangle({{-L, 1, 10}, {L, 1, 10}, {L, 1, 10 + L}, {-L, 1, 10 + L}}), 1.0});
+  scene.apertures.push_back({polygon({{-L, 1, 10}, {L, 1, 10}, {L, 1, 10 + L}, {-L, 1, 10 + L}}), 1.0});
   const double value = sc_percent(scene, {0, 0, 10}, {0, 1, 0});
   const double pi = std::numbers::pi;
   CHECK(std::abs(value / 100 - (3 * pi + 8) / (14 * pi)) < 1e-6);
@@ -117,8 +112,8 @@ TEST_CASE("an infinitely long obstruction of profile angle 25° leaves BRE's 27.
   const double L = 1e7, pi = std::numbers::pi, alpha = 25 * pi / 180;
   const double distance = 11, top = 10 + distance * std::tan(alpha);
   Scene scene;
-  scene.apertures.push_back({rectangle({{-L, 1, 10}, {L, 1, 10}, {L, 1, 10 + L}, {-L, 1, 10 + L}}), 1.0});
-  scene.occluders.push_back(rectangle({{-L, distance, 0}, {L, distance, 0}, {L, distance, top}, {-L, distance, top}}, "building"));
+  scene.apertures.push_back({polygon({{-L, 1, 10}, {L, 1, 10}, {L, 1, 10 + L}, {-L, 1, 10 + L}}), 1.0});
+  scene.occluders.push_back(polygon({{-L, distance, 0}, {L, distance, 0}, {L, distance, top}, {-L, distance, top}}, "building"));
   const double expected = (3 * pi * (1 - std::sin(alpha)) + 8 * std::cos(alpha) * std::cos(alpha)) / (14 * pi);
   CHECK(std::abs(sc_percent(scene, {0, 0, 10}, {0, 1, 0}) / 100 - expected) < 1e-6);
   CHECK(expected == Approx(0.273).margin(5e-4));
@@ -126,9 +121,9 @@ TEST_CASE("an infinitely long obstruction of profile angle 25° leaves BRE's 27.
 
 TEST_CASE("transmittance scales the sky component and apertures add") {
   Scene one, two;
-  const Polygon a = rectangle({{0, 2, 1}, {1, 2, 1}, {1, 2, 2}, {0, 2, 2}});
-  const Polygon b = rectangle({{1, 2, 1}, {2, 2, 1}, {2, 2, 2}, {1, 2, 2}});
-  const Polygon ab = rectangle({{0, 2, 1}, {2, 2, 1}, {2, 2, 2}, {0, 2, 2}});
+  const Polygon a = polygon({{0, 2, 1}, {1, 2, 1}, {1, 2, 2}, {0, 2, 2}});
+  const Polygon b = polygon({{1, 2, 1}, {2, 2, 1}, {2, 2, 2}, {1, 2, 2}});
+  const Polygon ab = polygon({{0, 2, 1}, {2, 2, 1}, {2, 2, 2}, {0, 2, 2}});
   one.apertures.push_back({ab, 0.7});
   two.apertures.push_back({a, 0.7});
   two.apertures.push_back({b, 0.7});
@@ -141,8 +136,8 @@ TEST_CASE("transmittance scales the sky component and apertures add") {
 
 TEST_CASE("results do not depend on the number of threads") {
   Scene scene;
-  scene.apertures.push_back({rectangle({{0, 0, 1}, {3, 0, 1}, {3, 0, 2.5}, {0, 0, 2.5}}), 1.0});
-  scene.occluders.push_back(rectangle({{1, 1.5, 0}, {1.4, 1.5, 0}, {1.4, 1.5, 3.5}, {1, 1.5, 3.5}}, "pillar"));
+  scene.apertures.push_back({polygon({{0, 0, 1}, {3, 0, 1}, {3, 0, 2.5}, {0, 0, 2.5}}), 1.0});
+  scene.occluders.push_back(polygon({{1, 1.5, 0}, {1.4, 1.5, 0}, {1.4, 1.5, 3.5}, {1, 1.5, 3.5}}, "pillar"));
   SensorGrid grid;
   for (int i = 0; i < 40; ++i)
     for (int j = 0; j < 30; ++j) grid.sensors.push_back({{0.1 * i, 0.5 + 0.1 * j, 0.85}, {0, 0, 1}});

@@ -10,6 +10,7 @@
 
 #include "geometry/convex_pieces.hpp"
 #include "reference_quadrature.hpp"
+#include "test_scenes.hpp"
 #include "sky/sky_component.hpp"
 
 using namespace daylit;
@@ -19,13 +20,7 @@ namespace {
 
 constexpr long double kEout = 7 * 3.141592653589793238462643383279502884L / 9;
 
-Polygon polygon(std::vector<Vec3> v, std::string name = "p") {
-  Polygon p;
-  p.vertices = std::move(v);
-  p.name = std::move(name);
-  p.where = {"test", 1};
-  return p;
-}
+using test::polygon;
 
 double sc(const Scene& scene, const Vec3& p, GeometryMode mode, const Vec3& n = {0, 0, 1}) {
   const VisibilityEngine engine(scene, mode);
@@ -67,6 +62,17 @@ std::vector<Polygon> reveal(double d) {
           polygon({{0, 0, 1}, {2, 0, 1}, {2, -d, 1}, {0, -d, 1}}, "sill"), polygon({{0, 0, 2}, {0, -d, 2}, {2, -d, 2}, {2, 0, 2}}, "head")};
 }
 
+// What a sensor at p (room side, y > 0) sees through the window with a reveal of depth d: the
+// window ∩ the projection of the outer opening (y = −d), which is the opening scaled by
+// s = p_y/(p_y + d) towards p's foot point; and only above p's horizon.
+long double reveal_reference(const Vec3& p, double d) {
+  const long double s = p.y / (p.y + d);
+  const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * s; };
+  const long double x0 = std::max<long double>(0, proj(0, p.x)), x1 = std::min<long double>(2, proj(2, p.x));
+  const long double z0 = std::max<long double>({1, proj(1, p.z), p.z}), z1 = std::min<long double>(2, proj(2, p.z));
+  return reference_sc(p, x0, x1, z0, z1);
+}
+
 }  // namespace
 
 TEST_CASE("a wall coplanar with the aperture, with a window-shaped hole, hides nothing") {
@@ -103,19 +109,13 @@ TEST_CASE("a coplanar occluder sharing an edge with the aperture hides exactly i
 }
 
 TEST_CASE("a reveal, whose inner edges are collinear with the window's, leaves the projection of the outer opening") {
-  // Seen from p, the outer opening (y = −d) projects onto the window plane scaled by
-  // s = p_y/(p_y + d) towards p's foot point; what stays visible is W ∩ that rectangle.
   const double d = 0.3;
   Scene scene;
   scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
   for (auto& f : reveal(d)) scene.occluders.push_back(f);
   scene.occluders.push_back(wall_with_seam_hole());
   for (const Vec3 p : {Vec3{0.5, 1.5, 0.85}, Vec3{1, 0.6, 1.5}, Vec3{3, 2, 0.5}, Vec3{-0.5, 4, 0.85}}) {
-    const long double s = p.y / (p.y + d);
-    const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * s; };
-    const long double x0 = std::max<long double>(0, proj(0, p.x)), x1 = std::min<long double>(2, proj(2, p.x));
-    const long double z0 = std::max<long double>({1, proj(1, p.z), p.z}), z1 = std::min<long double>(2, proj(2, p.z));
-    const long double ref = reference_sc(p, x0, x1, z0, z1);
+    const long double ref = reveal_reference(p, d);
     const double exact = sc(scene, p, GeometryMode::exact);
     record("reveal of depth 0.3", exact, sc(scene, p, GeometryMode::floating), ref);
     INFO("sensor " << p.x << " " << p.y << " " << p.z);
@@ -140,11 +140,7 @@ TEST_CASE("the reveal configuration placed at georeferenced coordinates keeps it
   for (auto& f : reveal(d)) scene.occluders.push_back(placed(f));
   scene.occluders.push_back(placed(wall_with_seam_hole()));
   for (const Vec3 p : {Vec3{0.5, 1.5, 0.85}, Vec3{1, 0.6, 1.5}, Vec3{3, 2, 0.5}}) {
-    const long double sc_scale = p.y / (p.y + d);
-    const auto proj = [&](long double a, long double pa) { return pa + (a - pa) * sc_scale; };
-    const long double x0 = std::max<long double>(0, proj(0, p.x)), x1 = std::min<long double>(2, proj(2, p.x));
-    const long double z0 = std::max<long double>({1, proj(1, p.z), p.z}), z1 = std::min<long double>(2, proj(2, p.z));
-    const long double ref = reference_sc(p, x0, x1, z0, z1);
+    const long double ref = reveal_reference(p, d);
     const Vec3 q = place(p);
     const double exact = sc(scene, q, GeometryMode::exact);
     record("reveal, rotated and at 5e6 m", exact, sc(scene, q, GeometryMode::floating), ref);
