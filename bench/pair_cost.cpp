@@ -3,7 +3,8 @@
 //
 //   build/bin/daylit-bench-pairs samples      (the path of the samples folder)
 //
-// Prints one row per case: pairs, µs per pair (best of 3 runs), the share of pairs that needed
+// Prints one row per case and mode (exact: certified intervals; float; ratnl: rationals
+// throughout, the reference): pairs, µs per pair (best of 3 runs), the share of pairs that needed
 // clipping, and the share that needed exact rationals after interval arithmetic.
 
 #include <tbb/global_control.h>
@@ -64,11 +65,11 @@ int main(int argc, char** argv) {
 
   std::printf("%-20s %-6s %9s %12s %10s %10s\n", "case", "mode", "pairs", "us_per_pair", "clipped", "rational");
   for (const auto& c : cases) {
-    for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::floating}) {
+    for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::floating, GeometryMode::rational}) {
       const VisibilityEngine engine(c.scene, mode);
       VisibilityCounters counters;
       const double us = best_time_per_pair(engine, c, counters);
-      std::printf("%-20s %-6s %9llu %12.3f %9.1f%% %9.2f%%\n", c.name.c_str(), mode == GeometryMode::exact ? "exact" : "float",
+      std::printf("%-20s %-6s %9llu %12.3f %9.1f%% %9.2f%%\n", c.name.c_str(), mode == GeometryMode::exact ? "exact" : (mode == GeometryMode::floating ? "float" : "ratnl"),
                   (unsigned long long)counters.pairs, us, 100.0 * double(counters.pairs_clipped) / double(counters.pairs),
                   100.0 * double(counters.pairs_rational) / double(counters.pairs));
     }

@@ -60,7 +60,9 @@ std::string image_path_for(const std::string& image, const std::string& grid_nam
 int run_df(const DfOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   const SkyModel sky = parse_sky_model(opt.sky);
-  const GeometryMode mode = opt.geometry == "float" ? GeometryMode::floating : GeometryMode::exact;
+  const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
+                            : opt.geometry == "rational" ? GeometryMode::rational
+                                                         : GeometryMode::exact;
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 
@@ -99,7 +101,7 @@ int run_df(const DfOptions& opt) {
 
   nlohmann::json summary;
   summary["sky"] = std::string(sky_model_name(sky));
-  summary["geometry"] = mode == GeometryMode::exact ? "exact" : "float";
+  summary["geometry"] = opt.geometry;
   summary["threads"] = threads;
   summary["components"] = {
       {"computed", {"sc"}},
@@ -161,8 +163,10 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
   df->add_option("--summary", opt->summary, "JSON file for per-grid statistics and what was left out");
   df->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
-  df->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default) or float (for comparison)")
-      ->check(CLI::IsMember({"exact", "float"}));
+  df->add_option("--geometry", opt->geometry,
+                 "Visibility arithmetic: exact (default: certified intervals, rationals where needed), float (plain "
+                 "doubles, for comparison) or rational (rationals throughout: a slow reference)")
+      ->check(CLI::IsMember({"exact", "float", "rational"}));
   df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_df(*opt); };

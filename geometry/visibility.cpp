@@ -243,23 +243,26 @@ struct VisibilityEngine::Impl {
     }
     std::vector<const ConvexPiece*> blockers;
     collect<Signs>(p, n, w, sh, blockers, counters);
-    if (blockers.empty()) {
+    const bool reference = mode == GeometryMode::rational;
+    if (blockers.empty() && !reference) {
       ++counters.pairs_unobstructed;
       if (!unobstructed_directions<Signs>(p, n, w, sh, region))
         clipping::ShadowClipper<double, Signs>(p, n, w, sh).run(blockers, region);
     } else {
-      ++counters.pairs_clipped;
+      blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
       counters.occluders_clipped += blockers.size();
       if constexpr (std::is_same_v<FT, double>) {
         clipping::ShadowClipper<double, Signs>(p, n, w, sh).run(blockers, region);
       } else {
         SphericalRegion certified;
-        bool certain = true;
-        try {
-          CGAL::Protect_FPU_rounding<true> upward;
-          clipping::ShadowClipper<Interval, Signs>(p, n, w, sh).run(blockers, certified);
-        } catch (const CGAL::Uncertain_conversion_exception&) {
-          certain = false;
+        bool certain = !reference;
+        if (certain) {
+          try {
+            CGAL::Protect_FPU_rounding<true> upward;
+            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh).run(blockers, certified);
+          } catch (const CGAL::Uncertain_conversion_exception&) {
+            certain = false;
+          }
         }
         if (certain) {
           for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
@@ -303,7 +306,7 @@ SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, s
                                                  VisibilityCounters& counters) const {
   SphericalRegion region;
   for (const ConvexPiece& piece : impl_->apertures.at(aperture)) {
-    if (impl_->mode == GeometryMode::exact)
+    if (impl_->mode != GeometryMode::floating)
       impl_->evaluate<ExactSigns, LazyExact>(p, n, piece, region, counters);
     else
       impl_->evaluate<FloatSigns, double>(p, n, piece, region, counters);

@@ -14,6 +14,8 @@ enum class GeometryMode {
   exact,     // exact predicates; constructions in interval arithmetic, certified, with exact
              // rationals wherever an interval cannot decide; output rounded once
   floating,  // the same algorithm in double precision, for comparison
+  rational,  // the same algorithm in exact (lazy) rationals throughout, no interval stage: the
+             // slow reference that the exact mode's certified shortcuts must reproduce
 };
 
 // What the visibility routine did and what it left out; summed over threads.
