@@ -16,12 +16,13 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(std::size_t done) {
-  if (!enabled_ || total_ == 0) return;
+  if (!enabled_ || total_ == 0 || (drawn_ && done == last_done_)) return;
   const auto now = std::chrono::steady_clock::now();
   // Draw after half a second (short runs stay silent), then at most ten times a second.
   if (now - start_ < std::chrono::milliseconds(500) && done < total_) return;
   if (drawn_ && now - last_ < std::chrono::milliseconds(100) && done < total_) return;
   last_ = now;
+  last_done_ = done;
   constexpr int width = 40;
   const double fraction = double(done) / double(total_);
   const int filled = int(fraction * width);

@@ -18,6 +18,7 @@ class ProgressBar {
   std::size_t total_;
   bool enabled_;
   bool drawn_ = false;
+  std::size_t last_done_ = 0;
   std::chrono::steady_clock::time_point start_, last_;
 };
 
