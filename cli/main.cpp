@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/df_command.hpp"
+#include "cli/eval_command.hpp"
 #include "geometry/error.hpp"
 
 int main(int argc, char** argv) {
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
                "arithmetic and the sky is integrated over what stays visible in closed form.");
   app.require_subcommand(1);
   auto run_df = daylit::cli::add_df_command(app);
+  auto run_eval = daylit::cli::add_eval_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -20,6 +22,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("df")) return run_df();
+    if (app.got_subcommand("eval")) return run_eval();
   } catch (const daylit::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;

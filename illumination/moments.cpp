@@ -9,7 +9,7 @@ namespace daylit {
 
 namespace {
 
-thread_local int last_precision = 0;
+thread_local MomentAccuracy last_accuracy;
 
 // A sum that remembers the magnitude of what went into it, to detect cancellation.
 template <class R>
@@ -133,18 +133,40 @@ std::array<double, N> to_double(const std::array<Sum<R>, N>& sums) {
   return out;
 }
 
+// Largest κ = magnitude/|value| over a result (a Sum or a container of them).
+template <class R>
+double condition(const Sum<R>& s) {
+  return s.magnitude == 0 ? 1.0 : double(s.magnitude / real::abs(s.value));
+}
+template <class Sums>
+double condition(const Sums& sums) {
+  double k = 1;
+  for (const auto& s : sums) k = std::max(k, condition(s));
+  return k;
+}
+
 // Evaluates compute(R{}) in double, then long double, then __float128, until the result (a Sum or
-// a vector of them) is well conditioned for that precision.
+// a vector of them) is well conditioned for that precision; records the precision used and the
+// error estimate 10·u·κ (u the unit roundoff) for last_moment_accuracy().
 template <class F>
 auto with_escalation(F&& compute) {
   const auto d = compute(double{});
-  if (well_conditioned(d, 64)) return last_precision = 0, to_double(d);
+  if (well_conditioned(d, 64)) {
+    last_accuracy = MomentAccuracy{0, 10 * 0x1p-53 * condition(d)};
+    return to_double(d);
+  }
   const auto l = compute((long double)0);
-  if (well_conditioned(l, 64.0 * 2048)) return last_precision = 1, to_double(l);
 #ifdef DAYLIT_HAS_FLOAT128
-  return last_precision = 2, to_double(compute(real::quad(0)));
+  if (well_conditioned(l, 64.0 * 2048)) {
+    last_accuracy = MomentAccuracy{1, 10 * 0x1p-64 * condition(l)};
+    return to_double(l);
+  }
+  const auto q = compute(real::quad(0));
+  last_accuracy = MomentAccuracy{2, 10 * 0x1p-113 * condition(q)};
+  return to_double(q);
 #else
-  return last_precision = 1, to_double(l);
+  last_accuracy = MomentAccuracy{1, 10 * 0x1p-64 * condition(l)};
+  return to_double(l);
 #endif
 }
 
@@ -189,6 +211,6 @@ double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Ve
   return with_escalation([&](auto r) { return double_axis_sum<decltype(r)>(region, w, v, n); });
 }
 
-int last_moment_precision() noexcept { return last_precision; }
+MomentAccuracy last_moment_accuracy() noexcept { return last_accuracy; }
 
 }  // namespace daylit

@@ -38,8 +38,14 @@ struct CosineMoments {
 };
 CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w);
 
-// Which precision the last call on this thread needed: 0 double, 1 long double, 2 __float128.
-// For benchmarks and reports of how often cancellation forced an escalation.
-int last_moment_precision() noexcept;
+// What the last call on this thread needed and achieved: the precision (0 double, 1 long double,
+// 2 __float128) and the estimated relative error 10·u·κ, κ = Σ|terms| / |result|. An estimate
+// above 1e-10 means cancellation beyond what __float128 carries (high orders far off the axis:
+// the stable complementary form is not implemented yet).
+struct MomentAccuracy {
+  int precision = 0;
+  double relative_error = 0;
+};
+MomentAccuracy last_moment_accuracy() noexcept;
 
 }  // namespace daylit

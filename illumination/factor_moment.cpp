@@ -1,0 +1,41 @@
+#include "illumination/factor_moment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geometry/error.hpp"
+#include "illumination/moments.hpp"
+#include "illumination/solid_angle.hpp"
+
+namespace daylit {
+
+FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> factors) {
+  std::erase_if(factors, [](const Factor& f) { return f.power == 0; });
+  std::sort(factors.begin(), factors.end(), [](const Factor& a, const Factor& b) { return a.power > b.power; });
+  for (const Factor& f : factors)
+    if (!(norm(f.axis) > 0) || !is_finite(f.axis)) throw Error("a factor axis must be a finite non-zero vector");
+
+  double scale = 1, value = 0;
+  if (factors.empty()) {
+    return {solid_angle(region), 1e-15};
+  } else if (factors.size() == 1) {
+    const double length = norm(factors[0].axis);
+    scale = std::pow(length, factors[0].power);
+    value = axial_moments(region, factors[0].axis / length, factors[0].power).back();
+  } else if (factors.size() == 2 && factors[1].power == 1) {
+    const double la = norm(factors[0].axis), lb = norm(factors[1].axis);
+    scale = std::pow(la, factors[0].power) * lb;
+    value = double_axis_moment(region, factors[0].axis / la, factors[1].axis / lb, factors[0].power);
+  } else {
+    std::string pattern;
+    for (const Factor& f : factors) pattern += (pattern.empty() ? "" : ",") + std::to_string(f.power);
+    throw Error("factor pattern (" + pattern + ") is not supported yet; supported: (), (n), (n,1)");
+  }
+  const double result = scale * value;
+  if (!std::isfinite(result) || (scale == 0 && value != 0))
+    throw Error("the factors' lengths raised to their powers overflow or underflow double");
+  return {result, last_moment_accuracy().relative_error};
+}
+
+}  // namespace daylit
