@@ -40,6 +40,7 @@ using LazyExact = CGAL::Lazy_exact_nt<CGAL::Gmpq>;
 using predicates::sign_of;
 
 inline int sign_of(const LazyExact& x) { return int(CGAL::sign(x)); }
+inline int sign_of(const CGAL::Gmpq& x) { return int(CGAL::sign(x)); }
 // Throws CGAL::Uncertain_conversion_exception when the interval contains zero but is not zero.
 inline int sign_of(const Interval& x) { return int(CGAL::make_certain(CGAL::sign(x))); }
 
@@ -472,53 +473,12 @@ class ShadowClipper {
     // What remains lies inside C: in shadow.
   }
 
-  // Normal of the plane through p that contains line L (every line here lies in such a plane:
-  // its projection from p is what the subtraction cut along). Zero for an unknown line.
-  Vec plane_through_p(const LineId& L) const {
-    switch (L.kind) {
-      case LineId::Kind::segment: return cross(sub3(*L.a), sub3(*L.b));
-      case LineId::Kind::hemisphere: return to3(n_in_);
-      case LineId::Kind::horizon: return {FT(0), FT(0), FT(1)};
-      case LineId::Kind::cone: return plane_through_p(cone_lines_[L.cone_edge]);
-      default: return {FT(0), FT(0), FT(0)};
-    }
-  }
-  Vec sub3(const Vec3& a) const { return relative(a); }
-
-  // Direction d = X − p to a vertex X of a visible piece, built afresh from what defines the
-  // vertex rather than from the chain of constructions that found it (whose intervals widen):
-  // an input vertex in the aperture's plane, the projection of an input vertex, or the meeting
-  // point of the two lines of its edges. With M1, M2 the normals of their planes through p,
-  // d = (M1 × M2) · (−h) / (N · (M1 × M2)) puts d on the aperture's plane.
-  std::array<FT, 3> direction(const V2& x, const LineId& in) const {
-    const FT minus_h = dot(N_, w0_.c3());
-    // Without two known lines (and always on the float path): lift the constructed coordinates,
-    // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
-    const auto lifted = [&] {
-      Vec d;
-      d[i_] = x.u;
-      d[j_] = x.v;
-      d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_];
-      return d;
-    };
-    if (x.in_plane) return sub3(*x.at);
-    if (!kSymbolic) return lifted();
-    Vec d;
-    if (x.at) {
-      d = sub3(*x.at);
-    } else {
-      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) return lifted();
-      d = cross(plane_through_p(in), plane_through_p(x.out));
-    }
-    const FT along = dot(N_, d);
-    // Planes that coincide define no point (an interval containing zero throws here).
-    if (sign_of(along) == 0) return lifted();
-    const FT t = minus_h / along;
-    return {d[0] * t, d[1] * t, d[2] * t};
-  }
-
-  // The same direction in number type T computed from the input doubles alone (nothing if the
-  // vertex is not known by its definition): in exact rationals, when an interval was too wide.
+  // Direction d = X − p to a vertex X of a visible piece, built afresh in number type T from what
+  // defines the vertex rather than from the chain of constructions that found it (whose intervals
+  // widen): an input vertex in the aperture's plane, the projection of an input vertex, or the
+  // meeting point of the lines of its two edges. With M1, M2 the normals of their planes through
+  // p, d = (M1 × M2) · (−h) / (N · (M1 × M2)) puts d on the aperture's plane. Nothing if the vertex
+  // is not known by its definition.
   template <class T>
   std::optional<std::array<T, 3>> direction_from_input(const V2& x, const LineId& in) const {
     const auto rel = [&](const Vec3& a) { return std::array<T, 3>{T(a.x) - T(p_in_.x), T(a.y) - T(p_in_.y), T(a.z) - T(p_in_.z)}; };
@@ -536,9 +496,24 @@ class ShadowClipper {
     const std::array<T, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
     const std::array<T, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
     const T along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
-    if (CGAL::sign(along) == CGAL::ZERO) return std::nullopt;
+    // Planes that coincide define no point (an interval containing zero throws here).
+    if (sign_of(along) == 0) return std::nullopt;
     const T t = (N[0] * o[0] + N[1] * o[1] + N[2] * o[2]) / along;
     return std::array<T, 3>{d[0] * t, d[1] * t, d[2] * t};
+  }
+
+  // The direction to a vertex in FT: from its definition on the exact path; on the float path,
+  // and for a vertex without one, lifted from its constructed coordinates,
+  // x_k = w0_k − (N_i (u − w0_i) + N_j (v − w0_j)) / N_k.
+  Vec direction(const V2& x, const LineId& in) const {
+    if constexpr (kSymbolic)
+      if (auto d = direction_from_input<FT>(x, in)) return *d;
+    if (x.in_plane) return relative(*x.at);
+    Vec d;
+    d[i_] = x.u;
+    d[j_] = x.v;
+    d[k_] = w0_[k_] - (N_[i_] * (x.u - w0_[i_]) + N_[j_] * (x.v - w0_[j_])) / N_[k_];
+    return d;
   }
 
   // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
