@@ -1,21 +1,22 @@
-// Exact visible regions (DESIGN.md §2), generic over the number type: the exact path runs the
-// algorithm below on CGAL's lazy exact rationals (interval arithmetic first, GMP rationals only
-// where an interval cannot decide), the float path runs the very same code on doubles.
+// Exact visible regions (DESIGN.md §2). The clipping is generic over the number type
+// (shadow_clipping.hpp): the exact path runs it in interval arithmetic with exact predicates and
+// provenance deciding what intervals cannot, the float path runs the same code on doubles, and the
+// rational mode runs it on CGAL's lazy exact rationals throughout, as a reference.
 //
 // Per receiver p and convex aperture piece W:
 //   1. cull occluder pieces: bounding boxes against the planes of the view cone in double with a
 //      wide margin, then exact predicates on the input coordinates (filtered, so mostly doubles);
-//   2. if none survives, clip W to the receiver's hemisphere and horizon in double: no exact work;
+//   2. if none survives, clip W to the receiver's hemisphere and horizon on the directions
+//      themselves (exact signs at the input vertices): no construction beyond that;
 //   3. otherwise clip W, clip each survivor to the cone over W, project it centrally onto W's
 //      plane, subtract the (convex) shadows from W piece by piece, and round the result once.
-// Step 3 runs first in interval arithmetic: if every sign it decides is certain, its combinatorics
-// are those of the exact computation and the output intervals enclose the exact coordinates (we
-// accept them when narrower than 2^-45 relative). Any uncertain sign (a degenerate configuration:
-// a shared edge, a coplanar face) aborts it, and the pair is redone in exact rationals. This is
-// CGAL's filtering paradigm lifted from predicates to the whole algorithm.
+// Step 3 runs first in intervals: if every sign is certain (by the interval or by exact
+// reasoning), its combinatorics are those of the exact computation and every output direction is
+// rebuilt from its definition and certified to 2^-45 of its length (or rebuilt in rationals). A
+// sign that nothing can decide aborts it, and the pair is redone in exact rationals: CGAL's
+// filtering paradigm lifted from predicates to the whole algorithm.
 
 #include "geometry/visibility.hpp"
-
 
 #include <algorithm>
 #include <array>
