@@ -4,6 +4,7 @@
 #include <array>
 
 #include "illumination/arc_power_integral.hpp"
+#include "illumination/solid_angle.hpp"
 
 namespace daylit {
 
@@ -36,18 +37,7 @@ void for_each_edge(const SphericalRegion& region, F&& f) {
 template <class R>
 Sum<R> solid_angle_sum(const SphericalRegion& region) {
   Sum<R> sum;
-  for (const auto& loop : region.loops) {
-    if (loop.size() < 3) continue;
-    const real::V3<R> a(loop[0]);
-    const R la = real::norm(a);
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      const real::V3<R> b(loop[i]), c(loop[i + 1]);
-      const R lb = real::norm(b), lc = real::norm(c);
-      const R numerator = dot(a, cross(b - a, c - a));
-      const R denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-      sum.add(R(2) * real::atan2(numerator, denominator));
-    }
-  }
+  for (const auto& loop : region.loops) for_each_solid_angle_term<R>(loop, [&](R term) { sum.add(term); });
   return sum;
 }
 

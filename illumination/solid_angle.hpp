@@ -2,6 +2,7 @@
 // Solid angle of a region of directions bounded by great arcs.
 
 #include "geometry/spherical_region.hpp"
+#include "illumination/real_vector.hpp"
 
 namespace daylit {
 
@@ -15,5 +16,21 @@ double solid_angle(const DirectionLoop& loop) noexcept;
 
 // Sum over the loops of a region.
 double solid_angle(const SphericalRegion& region) noexcept;
+
+// The fan terms 2·atan2(num, den) above, in precision R, each passed to add(term): shared by
+// solid_angle() and the moments, which also need their magnitudes to detect cancellation.
+template <class R, class Add>
+void for_each_solid_angle_term(const DirectionLoop& loop, Add&& add) {
+  if (loop.size() < 3) return;
+  const real::V3<R> a(loop[0]);
+  const R la = real::norm(a);
+  for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+    const real::V3<R> b(loop[i]), c(loop[i + 1]);
+    const R lb = real::norm(b), lc = real::norm(c);
+    const R numerator = dot(a, cross(b - a, c - a));
+    const R denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    add(R(2) * real::atan2(numerator, denominator));
+  }
+}
 
 }  // namespace daylit
