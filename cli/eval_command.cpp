@@ -81,7 +81,7 @@ double answer_moment(const json& q) {
   const FactorMoment m = factor_moment(region, factors);
   if (!(m.relative_error <= kAccuracyBound))
     throw Error("the edge terms cancel beyond what __float128 carries (estimated relative error " +
-                std::to_string(m.relative_error) + "); the stable high-order form is not implemented yet");
+                std::to_string(m.relative_error) + ")");
   return m.value;
 }
 
@@ -130,7 +130,8 @@ std::function<int()> add_eval_command(CLI::App& app) {
   eval->description(
       "Reads one JSON query per line (from FILE, or standard input) and writes one JSON answer per line:\n"
       "{\"id\": ..., \"value\": v} or {\"id\": ..., \"error\": \"...\"}. Supported now: quantity \"moment\" on\n"
-      "polygon regions seen from an origin, with an optional clip hemisphere and factor patterns (), (n), (n,1).");
+      "polygon regions seen from an origin, with an optional clip hemisphere and factor patterns (), (n), (n,1),\n"
+      "(n,1,1).");
   eval->add_option("file", *path, "JSON Lines file (default: standard input)");
   return [path] { return run_eval(*path); };
 }

@@ -14,6 +14,7 @@ struct ArcEdge {
   R one_minus_cos;  // 1 − cos θ, from the chord so that short arcs keep their digits
   real::V3<R> normal;         // unit (a×b)/|a×b|: the pole of the arc's great circle
   real::V3<R> start, end;     // unit a and unit b
+  real::V3<R> chord;          // end − start, from e = b − a so that short arcs keep their digits
   real::V3<R> start_tangent;  // unit tangent at a, towards b (normal × start)
   real::V3<R> end_tangent;    // unit tangent at b, onwards (normal × end)
 };
@@ -25,7 +26,8 @@ struct ArcEdge {
 template <class R>
 std::optional<ArcEdge<R>> arc_edge(const real::V3<R>& a, const real::V3<R>& b) noexcept {
   using real::norm;
-  const real::V3<R> c = cross(a, b - a);
+  const real::V3<R> e = b - a;
+  const real::V3<R> c = cross(a, e);
   const R cn = norm(c);
   if (!(cn > 0)) return std::nullopt;
   ArcEdge<R> arc;
@@ -35,8 +37,10 @@ std::optional<ArcEdge<R>> arc_edge(const real::V3<R>& a, const real::V3<R>& b) n
   arc.normal = c / cn;
   arc.start = a / la;
   arc.end = b / lb;
-  const real::V3<R> chord = arc.end - arc.start;
-  arc.one_minus_cos = R(0.5) * dot(chord, chord);
+  // b/|b| − a/|a| = e/|b| + a (|a| − |b|)/(|a||b|) with |a| − |b| = −e·(a + b)/(|a| + |b|): no
+  // difference of nearly equal unit vectors, so a 1e-9 rad arc keeps full relative precision.
+  arc.chord = e / lb - (dot(e, a + b) / (la * lb * (la + lb))) * a;
+  arc.one_minus_cos = R(0.5) * dot(arc.chord, arc.chord);
   arc.start_tangent = cross(arc.normal, arc.start);
   arc.end_tangent = cross(arc.normal, arc.end);
   return arc;

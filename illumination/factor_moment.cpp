@@ -22,15 +22,20 @@ FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> fa
   } else if (factors.size() == 1) {
     const double length = norm(factors[0].axis);
     scale = std::pow(length, factors[0].power);
-    value = axial_moments(region, factors[0].axis / length, factors[0].power).back();
+    value = axial_moment(region, factors[0].axis / length, factors[0].power);
   } else if (factors.size() == 2 && factors[1].power == 1) {
     const double la = norm(factors[0].axis), lb = norm(factors[1].axis);
     scale = std::pow(la, factors[0].power) * lb;
     value = double_axis_moment(region, factors[0].axis / la, factors[1].axis / lb, factors[0].power);
+  } else if (factors.size() == 3 && factors[1].power == 1 && factors[2].power == 1) {
+    const double la = norm(factors[0].axis), lb = norm(factors[1].axis), lc = norm(factors[2].axis);
+    scale = std::pow(la, factors[0].power) * lb * lc;
+    value = triple_axis_moment(region, factors[0].axis / la, factors[1].axis / lb, factors[2].axis / lc,
+                               factors[0].power);
   } else {
     std::string pattern;
     for (const Factor& f : factors) pattern += (pattern.empty() ? "" : ",") + std::to_string(f.power);
-    throw Error("factor pattern (" + pattern + ") is not supported yet; supported: (), (n), (n,1)");
+    throw Error("factor pattern (" + pattern + ") is not supported yet; supported: (), (n), (n,1), (n,1,1)");
   }
   const double result = scale * value;
   if (!std::isfinite(result) || (scale == 0 && value != 0))

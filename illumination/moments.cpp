@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
-#include "illumination/arc_power_integral.hpp"
+#include "illumination/cosine_power_arc.hpp"
 #include "illumination/solid_angle.hpp"
 
 namespace daylit {
@@ -49,60 +50,142 @@ Sum<R> lambert_sum(const SphericalRegion& region, const Vec3& n_in) {
   return sum;
 }
 
-// τ^k and the magnitudes of their terms, k = 0..n.
+// The edges of the region in the frame of a unit axis w, in precision R.
 template <class R>
-std::vector<Sum<R>> axial_moment_sums(const SphericalRegion& region, const Vec3& w_in, int n) {
-  const real::V3<R> w(w_in);
+std::vector<CosinePowerArc<R>> arcs_about(const SphericalRegion& region, const real::V3<R>& w) {
+  std::vector<CosinePowerArc<R>> arcs;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) { arcs.emplace_back(arc, w); });
+  return arcs;
+}
+
+template <class R>
+real::V3<R> unit(const Vec3& v) {
+  const real::V3<R> r(v);
+  return r / real::norm(r);
+}
+
+// τ^k and the magnitudes of their terms, k = 0..n, for a unit axis (eq. 11 unrolled: with unit w,
+// (k + 1) τ^k = σ [k even] + Σ_edges (w·m) Σ_{i ≤ k−1, i ≡ k−1 mod 2} G_i).
+template <class R>
+std::vector<Sum<R>> axial_moment_sums(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
+  std::vector<Sum<R>> boundary(static_cast<std::size_t>(n) + 1);  // boundary[i] = Σ (w·m) G_i
+  if (n > 0)
+    for (const auto& arc : arcs) {
+      const std::vector<R> G = arc.forward(n - 1);
+      for (int i = 0; i < n; ++i) boundary[i].add(arc.w_dot_normal() * G[i]);
+    }
   std::vector<Sum<R>> tau(static_cast<std::size_t>(n) + 1);
-  tau[0] = solid_angle_sum<R>(region);
-  if (n == 0) return tau;
-  std::vector<Sum<R>> boundary(static_cast<std::size_t>(n));
-  std::vector<R> G;
-  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
-    arc_power_integrals(arc, w, n - 1, G);
-    const R wm = dot(w, arc.normal);
-    for (int k = 0; k < n; ++k) boundary[k].add(wm * G[k]);
-  });
-  const R w2 = dot(w, w);
+  Sum<R> even = sigma, odd;  // running (k + 1) τ^k for even and odd k
+  tau[0] = sigma;
   for (int k = 1; k <= n; ++k) {
-    const Sum<R> lower = k >= 2 ? tau[k - 2] : Sum<R>{};
-    const R scale = R(k - 1) * w2;
-    tau[k].value = (scale * lower.value + boundary[k - 1].value) / R(k + 1);
-    tau[k].magnitude = (scale * lower.magnitude + boundary[k - 1].magnitude) / R(k + 1);
+    Sum<R>& running = k % 2 == 0 ? even : odd;
+    running.add(boundary[k - 1].value, boundary[k - 1].magnitude);
+    tau[k] = {running.value / R(k + 1), running.magnitude / R(k + 1)};
   }
   return tau;
 }
 
+// The complementary form of τ^n (moments.hpp); false where it does not apply (an edge within
+// ~1e-3 rad of ±w, where the tails converge too slowly, or a winding number that does not come
+// out an integer).
 template <class R>
-Sum<R> double_axis_sum(const SphericalRegion& region, const Vec3& w_in, const Vec3& v_in, int n) {
-  const real::V3<R> w(w_in), v(v_in);
-  Sum<R> boundary;
-  std::vector<R> G;
-  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
-    arc_power_integrals(arc, w, n, G);
-    boundary.add(dot(v, arc.normal) * G[n]);
-  });
-  Sum<R> result;
-  if (n > 0) {
-    const Sum<R> lower = axial_moment_sums<R>(region, w_in, n - 1)[n - 1];
-    const R scale = R(n) * dot(w, v);
-    result.add(scale * lower.value, real::abs(scale) * lower.magnitude);
+bool complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n, Sum<R>& out) {
+  const R two_pi = R(2) * R(3.14159265358979323846264338327950288L);
+  R winding = n % 2 == 0 ? sigma.value : R(0);
+  for (const auto& arc : arcs) winding += n % 2 == 0 ? arc.odd_series_times_wm() : arc.even_series_times_wm();
+  winding /= two_pi;
+  const R N = real::round(winding);
+  if (!(real::abs(winding - N) < R(0.05))) return false;
+  out = Sum<R>{};
+  out.add(two_pi * N);
+  for (const auto& arc : arcs) {
+    R tail, magnitude;
+    if (!arc.tail(n + 1, tail, magnitude)) return false;
+    const R wm = arc.w_dot_normal();
+    out.add(-wm * tail, real::abs(wm) * magnitude);
   }
-  result.add(boundary.value, boundary.magnitude);
-  result.value /= R(n + 2);
-  result.magnitude /= R(n + 2);
+  out.value /= R(n + 1);
+  out.magnitude /= R(n + 1);
+  return true;
+}
+
+template <class R>
+double condition(const Sum<R>& s);
+
+// τ^n for a unit axis by whichever of eq. 11 and the complementary form cancels less.
+template <class R>
+Sum<R> axial_moment_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
+  const Sum<R> forward = axial_moment_sums<R>(arcs, sigma, n)[n];
+  if (forward.magnitude <= R(64) * real::abs(forward.value)) return forward;
+  Sum<R> complementary;
+  if (complementary_axial_sum(arcs, sigma, n, complementary) && condition(complementary) < condition(forward))
+    return complementary;
+  return forward;
+}
+
+// ∫ (w·u)^n (v·u) dσ for a unit axis w (moments.hpp): (v·w) τ^{n+1} + Σ (v⊥·m) G_n / (n + 2).
+template <class R>
+Sum<R> double_axis_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, const real::V3<R>& w,
+                       const real::V3<R>& v, int n) {
+  const R vw = dot(v, w);
+  const real::V3<R> v_perp = v - vw * w;
+  Sum<R> result;
+  if (vw != 0) {
+    const Sum<R> tau = axial_moment_sum(arcs, sigma, n + 1);
+    result.add(vw * tau.value, real::abs(vw) * tau.magnitude);
+  }
+  for (const auto& arc : arcs) result.add(dot(v_perp, arc.arc().normal) * arc.G(n) / R(n + 2));
   return result;
 }
 
-// Cancellation limits: a result computed with unit roundoff u from terms of total magnitude M
-// carries an error of about 10·u·M; these bound it near 1e-13 of the result.
+// ∫ (w·u)^n (a⊥·u)(b⊥·u) dσ for unit w and a⊥, b⊥ ⟂ w (moments.hpp).
 template <class R>
-bool well_conditioned(const Sum<R>& s, double kappa_limit) {
-  return s.magnitude <= R(kappa_limit) * real::abs(s.value);
+Sum<R> perpendicular_pair_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, const real::V3<R>& a_perp,
+                              const real::V3<R>& b_perp, int n) {
+  Sum<R> result;
+  const R ab = dot(a_perp, b_perp);
+  if (ab != 0) {
+    const Sum<R> tau = axial_moment_sum(arcs, sigma, n);
+    result.add(ab * tau.value, real::abs(ab) * tau.magnitude);
+  }
+  for (const auto& arc : arcs) {
+    const R bm = dot(b_perp, arc.arc().normal);
+    if (bm == 0) continue;
+    R line;  // ∫_arc (w·u)^n (a⊥·u) ds
+    if (!(arc.c() > 0)) {
+      // w ⟂ the arc's plane: (w·u)^n vanishes for n ≥ 1; for n = 0, ∫ (a⊥·u) ds directly.
+      const auto& e = arc.arc();
+      line = n > 0 ? R(0) : dot(a_perp, e.start) * e.sin_length + dot(a_perp, e.start_tangent) * e.one_minus_cos;
+    } else {
+      const R p = dot(a_perp, arc.peak_direction()), q = dot(a_perp, arc.peak_tangent());
+      const R c = arc.c();
+      // c^n F_{n+1} = G_{n+1}/c; the endpoint powers of cos^{n+1}: −D_{n+1}.
+      line = p * arc.G(n + 1) / c - q * real::powi(c, n) * arc.cos_power_difference(n + 1) / R(n + 1);
+    }
+    result.add(bm * line);
+  }
+  result.value /= R(n + 3);
+  result.magnitude /= R(n + 3);
+  return result;
 }
-template <class Sums>
-bool well_conditioned(const Sums& sums, double kappa_limit) {
-  return std::all_of(sums.begin(), sums.end(), [&](const auto& s) { return well_conditioned(s, kappa_limit); });
+
+template <class R>
+Sum<R> triple_axis_sum(const SphericalRegion& region, const Vec3& w_in, const Vec3& a_in, const Vec3& b_in, int n) {
+  const real::V3<R> w = unit<R>(w_in), a(a_in), b(b_in);
+  const auto arcs = arcs_about(region, w);
+  const Sum<R> sigma = solid_angle_sum<R>(region);
+  const R aw = dot(a, w), bw = dot(b, w);
+  const real::V3<R> a_perp = a - aw * w, b_perp = b - bw * w;
+  Sum<R> result;
+  auto add = [&](R factor, const Sum<R>& s) {
+    if (factor != 0) result.add(factor * s.value, real::abs(factor) * s.magnitude);
+  };
+  if (aw != 0 && bw != 0) add(aw * bw, axial_moment_sum(arcs, sigma, n + 2));
+  // ∫ (w·u)^{n+1} (x⊥·u) dσ = Σ (x⊥·m) G_{n+1} / (n + 3): double_axis_sum with v ⟂ w.
+  if (aw != 0) add(aw, double_axis_sum(arcs, sigma, w, b_perp, n + 1));
+  if (bw != 0) add(bw, double_axis_sum(arcs, sigma, w, a_perp, n + 1));
+  add(R(1), perpendicular_pair_sum(arcs, sigma, a_perp, b_perp, n));
+  return result;
 }
 
 double to_double(const Sum<double>& s) { return s.value; }
@@ -135,27 +218,31 @@ double condition(const Sums& sums) {
   return k;
 }
 
-// Evaluates compute(R{}) in double, then long double, then __float128, until the result (a Sum or
-// a vector of them) is well conditioned for that precision; records the precision used and the
-// error estimate 10·u·κ (u the unit roundoff) for last_moment_accuracy().
+// Evaluates compute(R{}) in double, then long double, then __float128, until the estimated
+// relative error (10 + order)·u·κ (u the unit roundoff, κ = Σ|terms| / |result|) is below 1e-13,
+// and records the precision used and the estimate for last_moment_accuracy(). The order enters
+// because every term carries (w·u)^k, whose rounding is k·u relative: a 1e-4 rad luminaire at
+// n = 1000 has κ ≈ 60 and an error of 1e-11 in double, 1e-16 in long double.
 template <class F>
-auto with_escalation(F&& compute) {
+auto with_escalation(int order, F&& compute) {
+  constexpr double target = 1e-13;
+  auto estimate = [&](double u, const auto& result) { return (10.0 + order) * u * condition(result); };
   const auto d = compute(double{});
-  if (well_conditioned(d, 64)) {
-    last_accuracy = MomentAccuracy{0, 10 * 0x1p-53 * condition(d)};
+  if (estimate(0x1p-53, d) <= target) {
+    last_accuracy = MomentAccuracy{0, estimate(0x1p-53, d)};
     return to_double(d);
   }
   const auto l = compute((long double)0);
 #ifdef DAYLIT_HAS_FLOAT128
-  if (well_conditioned(l, 64.0 * 2048)) {
-    last_accuracy = MomentAccuracy{1, 10 * 0x1p-64 * condition(l)};
+  if (estimate(0x1p-64, l) <= target) {
+    last_accuracy = MomentAccuracy{1, estimate(0x1p-64, l)};
     return to_double(l);
   }
   const auto q = compute(real::quad(0));
-  last_accuracy = MomentAccuracy{2, 10 * 0x1p-113 * condition(q)};
+  last_accuracy = MomentAccuracy{2, estimate(0x1p-113, q)};
   return to_double(q);
 #else
-  last_accuracy = MomentAccuracy{1, 10 * 0x1p-64 * condition(l)};
+  last_accuracy = MomentAccuracy{1, estimate(0x1p-64, l)};
   return to_double(l);
 #endif
 }
@@ -170,7 +257,7 @@ std::array<Sum<R>, 2> cosine_moment_sums(const SphericalRegion& region, const Ve
   for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
     const R nm = dot(n, arc.normal);
     sums[0].add(R(0.5) * arc.length * nm);
-    // ∫_arc (w·u) ds = (w·a) sin θ + (w·s_a)(1 − cos θ): arc_power_integrals() at order 1.
+    // ∫_arc (w·u) ds = (w·a) sin θ + (w·s_a)(1 − cos θ): G_1 of cosine_power_arc.hpp.
     boundary.add(nm * (dot(w, arc.start) * arc.sin_length + dot(w, arc.start_tangent) * arc.one_minus_cos));
   });
   const R wn = dot(w, n);
@@ -185,20 +272,88 @@ std::array<Sum<R>, 2> cosine_moment_sums(const SphericalRegion& region, const Ve
 }  // namespace
 
 CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w) {
-  const auto m = with_escalation([&](auto r) { return cosine_moment_sums<decltype(r)>(region, n, w); });
+  const auto m = with_escalation(1, [&](auto r) { return cosine_moment_sums<decltype(r)>(region, n, w); });
   return {m[0], m[1]};
 }
 
 double lambert(const SphericalRegion& region, const Vec3& n) {
-  return with_escalation([&](auto r) { return lambert_sum<decltype(r)>(region, n); });
+  return with_escalation(1, [&](auto r) { return lambert_sum<decltype(r)>(region, n); });
 }
 
+// The kernels take a unit axis; (w·u)^n = |w|^n (ŵ·u)^n.
 std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, int n) {
-  return with_escalation([&](auto r) { return axial_moment_sums<decltype(r)>(region, w, n); });
+  std::vector<double> tau = with_escalation(n, [&](auto r) {
+    using R = decltype(r);
+    const auto arcs = arcs_about(region, unit<R>(w));
+    return axial_moment_sums<R>(arcs, solid_angle_sum<R>(region), n);
+  });
+  const double length = norm(w);
+  double scale = 1;
+  for (double& t : tau) t *= scale, scale *= length;
+  return tau;
+}
+
+double axial_moment(const SphericalRegion& region, const Vec3& w, int n) {
+  return std::pow(norm(w), n) * with_escalation(n, [&](auto r) {
+           using R = decltype(r);
+           return axial_moment_sum<R>(arcs_about(region, unit<R>(w)), solid_angle_sum<R>(region), n);
+         });
 }
 
 double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n) {
-  return with_escalation([&](auto r) { return double_axis_sum<decltype(r)>(region, w, v, n); });
+  return std::pow(norm(w), n) * with_escalation(n + 1, [&](auto r) {
+           using R = decltype(r);
+           const real::V3<R> w_unit = unit<R>(w);
+           return double_axis_sum<R>(arcs_about(region, w_unit), solid_angle_sum<R>(region), w_unit, real::V3<R>(v), n);
+         });
+}
+
+double triple_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b, int n) {
+  return std::pow(norm(w), n) *
+         with_escalation(n + 2, [&](auto r) { return triple_axis_sum<decltype(r)>(region, w, a, b, n); });
+}
+
+TruncatedMoment axial_moment_truncated(const SphericalRegion& region, const Vec3& w, int n, double tolerance) {
+  const auto arcs = arcs_about(region, unit<double>(w));
+  const Sum<double> sigma = solid_angle_sum<double>(region);
+  Sum<double> sum;
+  if (n % 2 == 0) sum.add(sigma.value, sigma.magnitude);
+  double dropped = 0;
+  int terms = 0;
+  for (const auto& arc : arcs) {
+    if (n == 0) break;
+    double arc_dropped = 0;
+    const double wm = arc.w_dot_normal();
+    sum.add(wm * arc.truncated_sum((n - 1) % 2, n - 1, tolerance, &arc_dropped, &terms));
+    dropped += std::abs(wm) * arc_dropped;
+  }
+  const double scale = std::pow(norm(w), n) / (n + 1);
+  return {scale * sum.value, scale * (dropped + 10 * 0x1p-53 * sum.magnitude), terms};
+}
+
+TruncatedMoment double_axis_moment_truncated(const SphericalRegion& region, const Vec3& w_in, const Vec3& v, int n,
+                                             double tolerance) {
+  const real::V3<double> w = unit<double>(w_in);
+  const double vw = dot(real::V3<double>(v), w);
+  const real::V3<double> v_perp = real::V3<double>(v) - vw * w;
+  TruncatedMoment axial{0, 0, 0};
+  if (vw != 0) axial = axial_moment_truncated(region, w_in / norm(w_in), n + 1, tolerance);
+  const auto arcs = arcs_about(region, w);
+  // The top-order edge terms of eq. 14, Σ (v⊥·m) G_n / (n + 2): dropped when their bound is.
+  double top_bound = 0;
+  for (const auto& arc : arcs) top_bound += std::abs(dot(v_perp, arc.arc().normal)) * arc.G_bound(n) / (n + 2);
+  TruncatedMoment result{vw * axial.value, std::abs(vw) * axial.error_bound, axial.terms};
+  if (top_bound <= tolerance * std::abs(result.value)) {
+    result.error_bound += top_bound;
+  } else {
+    Sum<double> top;
+    for (const auto& arc : arcs) top.add(dot(v_perp, arc.arc().normal) * arc.G(n) / (n + 2));
+    result.value += top.value;
+    result.error_bound += 10 * 0x1p-53 * top.magnitude;
+    result.terms += int(arcs.size()) * (n + 1);
+  }
+  const double scale = std::pow(norm(w_in), n);
+  return {scale * result.value, scale * result.error_bound, result.terms};
 }
 
 MomentAccuracy last_moment_accuracy() noexcept { return last_accuracy; }

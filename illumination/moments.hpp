@@ -6,10 +6,10 @@
 // the minus signs of his eqs. 11 and 14 into plus signs below. Axes need not be unit vectors.
 //
 // Accuracy: each result is first computed in double together with the sum of the absolute values
-// of its terms; where that sum exceeds the result by more than a factor of 64 (terms that cancel:
-// a region grazing the receiver's plane, or small and far off the axes; DESIGN.md §7) it is
-// recomputed in long double, and beyond 64·2^11 in __float128. The result is then within about
-// 1e-13 relative of the exact value for the given (double) directions.
+// of its terms; where the estimated error (10 + n)·u·κ (κ that sum over |result|, n the order)
+// exceeds 1e-13 (terms that cancel: a region grazing the receiver's plane, or small and far off
+// the axes; DESIGN.md §7) it is recomputed in long double, and if need be in __float128. The
+// result is then within about 1e-13 relative of the exact value for the given (double) input.
 
 #include <vector>
 
@@ -22,12 +22,49 @@ namespace daylit {
 double lambert(const SphericalRegion& region, const Vec3& n);
 
 // Axial moments τ^k = ∫_A (w·u)^k dσ for k = 0..n, by Arvo's eq. 11 with our orientation:
-//     (k + 1) τ^k = (k − 1) |w|² τ^{k−2} + Σ_edges (w·m) ∫_arc (w·u)^{k−1} ds,  τ^0 = σ(A).
+//     (k + 1) τ^k = (k − 1) |w|² τ^{k−2} + Σ_edges (w·m) ∫_arc (w·u)^k−1 ds,  τ^0 = σ(A),
+// all orders in one O(n·edges) pass. Far off the axis at high orders the result is the small
+// difference of large terms; use axial_moment() there.
 std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, int n);
 
-// Double-axis moment ∫_A (w·u)^n (v·u) dσ by Arvo's eq. 14 with our orientation:
-//     (n + 2) τ^{n,1} = n (w·v) τ^{n−1} + Σ_edges (v·m) ∫_arc (w·u)^n ds.
+// τ^n alone (Arvo's AxialMoment), O(n·edges), accurate at every order: where eq. 11 cancels (the
+// region far from ±w relative to the lobe's width ~1/√n), the complementary form
+//     (n + 1) τ^n = 2π N − Σ_edges (w·m) Σ_{j ≥ 0} ∫_arc (w·u)^{n+1+2j} ds,
+// with N = [w ∈ A] + (−1)^n [−w ∈ A] (DESIGN.md §7), whose terms are as small as the result.
+// N is an integer computed, not tested for: the series summed to infinity have closed forms
+// (cosine_power_arc.hpp), and eq. 11 extended to infinity says σ[n even] + their sum = 2π N.
+// The tails are summed by the upward or Miller's downward recurrence, whichever is stable.
+double axial_moment(const SphericalRegion& region, const Vec3& w, int n);
+
+// Double-axis moment ∫_A (w·u)^n (v·u) dσ (Arvo's eq. 14), O(n·edges), accurate at every order
+// through the split v = (v·w) w + v⊥ (w unit here; other lengths scale the result by |w|^n):
+//     τ^{n,1} = (v·w) τ^{n+1} + Σ_edges (v⊥·m) ∫_arc (w·u)^n ds / (n + 2),
+// which is eq. 14 with eq. 11 substituted; the first term is an axial moment (stable as above),
+// the second sums terms no larger than the result's own scale.
 double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n);
+
+// ∫_A (w·u)^n (a·u)(b·u) dσ, the factor pattern (n, 1, 1), O(n·edges). With a = (a·ŵ)ŵ + a⊥ and
+// b likewise, the recurrence of Chen and Arvo (2000, eq. 29, q = 0) taken about b⊥ gives
+//     (n + 3) ∫ (w·u)^n (a⊥·u)(b⊥·u) dσ = (a⊥·b⊥) τ^n + Σ_edges (b⊥·m) ∫_arc (w·u)^n (a⊥·u) ds,
+// and the terms with a·ŵ or b·ŵ are double-axis and axial moments as above. The arc integral is
+// c^n [(a⊥·p) F_{n+1} + (a⊥·q)(cos^{n+1} s0 − cos^{n+1} s1)/(n + 1)] in the frame of
+// cosine_power_arc.hpp.
+double triple_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b, int n);
+
+// Early termination (Arvo 1995 §5.4, eq. 21): the series of eq. 11 over the cosine powers of one
+// edge, Σ_i c^i F_i, is stopped once what is left, bounded by c^k ∫|cos|^k (c r)²/(1 − (c r)²)
+// (r = max |cos| on the arc, so |F_{k+2j}| ≤ r^{2j} ∫|cos|^k), is below `tolerance` times the
+// edge's partial sum; for the double-axis moment the top-order term of eq. 14 is dropped as well
+// when its bound c^n θ r^n is below tolerance of the result. Faster where the axis is far from
+// every edge's plane (c r well below 1); never more accurate than the exact functions above.
+struct TruncatedMoment {
+  double value;
+  double error_bound;  // bound on |value − exact|: the dropped terms plus the rounding estimate
+  int terms;           // cosine-power integrals evaluated, summed over the edges
+};
+TruncatedMoment axial_moment_truncated(const SphericalRegion& region, const Vec3& w, int n, double tolerance);
+TruncatedMoment double_axis_moment_truncated(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n,
+                                             double tolerance);
 
 // ∫_A (n·u) dσ and ∫_A (w·u)(n·u) dσ together, in one pass over the edges: the two moments a
 // sky luminance linear in u needs (the CIE overcast sky). Same formulas as lambert() and
@@ -40,8 +77,7 @@ CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const
 
 // What the last call on this thread needed and achieved: the precision (0 double, 1 long double,
 // 2 __float128) and the estimated relative error 10·u·κ, κ = Σ|terms| / |result|. An estimate
-// above 1e-10 means cancellation beyond what __float128 carries (high orders far off the axis:
-// the stable complementary form is not implemented yet).
+// above 1e-10 means cancellation beyond what __float128 carries.
 struct MomentAccuracy {
   int precision = 0;
   double relative_error = 0;

@@ -2,7 +2,9 @@
 // 3-vectors over a real type R (double, long double, or __float128 where the compiler has it), so
 // that a kernel can be re-run in extended precision when its edge terms cancel (DESIGN.md §7).
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/vec3.hpp"
 
@@ -15,13 +17,37 @@ namespace daylit::real {
 
 using std::abs;
 using std::atan2;
+using std::round;
 using std::sqrt;
 #ifdef DAYLIT_HAS_FLOAT128
 using quad = __float128;
 inline quad abs(quad x) { return fabsq(x); }
 inline quad atan2(quad y, quad x) { return atan2q(y, x); }
 inline quad sqrt(quad x) { return sqrtq(x); }
+inline quad round(quad x) { return roundq(x); }
 #endif
+
+// Unit roundoff u of R: 2^-53, 2^-64 (x87 long double) or 2^-113.
+template <class R>
+constexpr R unit_roundoff() {
+  return std::numeric_limits<R>::epsilon() / 2;
+}
+#ifdef DAYLIT_HAS_FLOAT128
+template <>
+inline quad unit_roundoff<quad>() {
+  return quad(0x1p-113L);  // exact: 2^-113 is a long double
+}
+#endif
+
+// x^k for k ≥ 0 by binary powering: exact powers for the recurrences without a pow() shim for
+// every precision; underflows to zero like the quantity it stands for.
+template <class R>
+R powi(R x, int k) {
+  R result = 1;
+  for (; k > 0; k >>= 1, x *= x)
+    if (k & 1) result *= x;
+  return result;
+}
 
 template <class R>
 struct V3 {

@@ -29,11 +29,11 @@ TEST_CASE("directions through a polygon are positive whatever the vertex order")
   CHECK(directions_through(square, {5, 5, 1}).empty());  // origin in the polygon's plane
 }
 
-TEST_CASE("factor patterns (n) and (n,1) with non-unit axes agree with quadrature") {
+TEST_CASE("factor patterns (n), (n,1) and (n,1,1) with non-unit axes agree with quadrature") {
   const std::vector<Vec3> quad{{-0.5, 1.5, 0.2}, {1.2, 1.5, 0.2}, {1.2, 1.5, 1.9}, {-0.5, 1.5, 1.9}};
   const Vec3 origin{0.1, -0.3, 0.4};
   const auto region = directions_through(quad, origin);
-  const Vec3 a{0.4, 1.8, 0.6}, b{-0.3, 0.2, 2.0};
+  const Vec3 a{0.4, 1.8, 0.6}, b{-0.3, 0.2, 2.0}, c{1.1, -0.4, 0.3};
   const LVec3 o{-0.5, 1.5, 0.2}, e1{1.7, 0, 0}, e2{0, 0, 1.7};
   for (int n : {0, 1, 2, 5, 8}) {
     const long double ref_n = test::integrate_directions(test::lvec(origin), o, e1, e2,
@@ -41,10 +41,14 @@ TEST_CASE("factor patterns (n) and (n,1) with non-unit axes agree with quadratur
     const long double ref_n1 = test::integrate_directions(test::lvec(origin), o, e1, e2, [&](const LVec3& u) {
       return std::pow(ldot(a, u), (long double)n) * ldot(b, u);
     });
+    const long double ref_n11 = test::integrate_directions(test::lvec(origin), o, e1, e2, [&](const LVec3& u) {
+      return std::pow(ldot(a, u), (long double)n) * ldot(b, u) * ldot(c, u);
+    });
     INFO("n = " << n);
     CHECK(factor_moment(region, {{a, n}}).value == Approx(double(ref_n)).epsilon(1e-12));
     // Either order of the factors.
     CHECK(factor_moment(region, {{b, 1}, {a, n}}).value == Approx(double(ref_n1)).epsilon(1e-12));
+    CHECK(factor_moment(region, {{b, 1}, {c, 1}, {a, n}}).value == Approx(double(ref_n11)).epsilon(1e-12));
   }
 }
 
@@ -61,7 +65,8 @@ TEST_CASE("a clip hemisphere keeps exactly the part of the region in front of it
 
 TEST_CASE("unsupported factor patterns are refused by name") {
   const auto region = directions_through({{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, {});
-  CHECK_THROWS_WITH(factor_moment(region, {{{1, 0, 0}, 2}, {{0, 1, 0}, 1}, {{0, 0, 1}, 1}}), Catch::Contains("(2,1,1)"));
+  CHECK_THROWS_WITH(factor_moment(region, {{{1, 0, 0}, 2}, {{0, 1, 0}, 1}, {{0, 0, 1}, 1}, {{1, 1, 0}, 1}}),
+                    Catch::Contains("(2,1,1,1)"));
   CHECK_THROWS_WITH(factor_moment(region, {{{1, 0, 0}, 2}, {{0, 1, 0}, 2}}), Catch::Contains("(2,2)"));
   CHECK_THROWS_AS(factor_moment(region, {{{0, 0, 0}, 1}}), Error);
 }
