@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "illumination/glass_transmittance.hpp"
+
 namespace daylit {
 
 namespace {
@@ -48,9 +50,16 @@ Scene assemble_scene(const RadContent& content) {
     const std::string type = material ? material->type : "void";
     if (type == "glass") {
       const double t = glass_normal_transmittance(*material);
-      describe_once(*material, "glass '" + material->name + "': normal-incidence transmittance " + format_fraction(t) +
-                                   ", applied at every angle of incidence");
-      scene.apertures.push_back({poly, t});
+      const auto& r = material->reals;
+      const TransmittancePolynomial fit =
+          fit_glass_transmittance(GlassOptics{{r[0], r[1], r[2]}, r.size() > 3 ? r[3] : 1.52});
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "': transmittance %.4f at normal incidence, falling with the angle of incidence as Radiance's "
+                    "glass model, fitted by a degree-%zu polynomial in cos θ (max error %.1e)",
+                    t, fit.coefficients.size() - 1, fit.max_error);
+      describe_once(*material, "glass '" + material->name + text);
+      scene.apertures.push_back({poly, t, fit.coefficients, fit.max_error});
     } else if (entry.from_aperture_file) {
       if (type == "void") {
         scene.apertures.push_back({poly, 1.0});

@@ -13,6 +13,10 @@ struct Aperture {
   Polygon polygon;
   // Fraction of the sky's light that passes, at normal incidence (1 for an open hole).
   double transmittance = 1;
+  // For glass: T(μ) = Σ_k angular_transmittance[k] μ^k, μ the cosine of incidence on the pane
+  // (illumination/glass_transmittance.hpp), and the fit's maximum error; empty: T is constant.
+  std::vector<double> angular_transmittance{};
+  double angular_fit_error = 0;
 };
 
 struct Scene {
@@ -21,8 +25,8 @@ struct Scene {
   std::vector<std::string> notices;
 };
 
-// Polygons in aperture files are sky openings: transmittance 1 for `void`, the normal-incidence
-// transmittance for `glass`, (1 − spec)·trans·luminance(colour) for `trans` (its diffuse part
+// Polygons in aperture files are sky openings: transmittance 1 for `void`, Radiance's angle-
+// dependent transmittance for `glass` (fitted by a polynomial in the cosine of incidence), (1 − spec)·trans·luminance(colour) for `trans` (its diffuse part
 // treated as if it were clear). `glass` polygons in scene files are apertures as well; every other
 // polygon in a scene file is an opaque occluder.
 Scene assemble_scene(const RadContent& content);

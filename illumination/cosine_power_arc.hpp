@@ -77,6 +77,24 @@ class CosinePowerArc {
     return F;
   }
 
+  // F_k = ∫ cos^k s ds (without the factor c^k) and D_k = cos^k s1 − cos^k s0 for k = 0..k_max by
+  // the upward recurrence: for the low orders (≲ 20) of fused kernels, where it is accurate.
+  void forward_normalized(int k_max, std::vector<R>& F, std::vector<R>& D) const {
+    F.assign(std::size_t(k_max) + 1, R(0));
+    D.assign(std::size_t(k_max) + 1, R(0));
+    F[0] = theta_;
+    if (!(c_ > 0) || k_max == 0) return;
+    F[1] = dsin_;
+    D[1] = dcos_;
+    R cos0_j = cos0_;  // cos^j s0 for j = 1
+    for (int j = 1; j + 1 <= k_max; ++j) {
+      const R E = D[j] * sin1_ + cos0_j * dsin_;
+      F[j + 1] = (E + R(j) * F[j - 1]) / R(j + 1);
+      D[j + 1] = cos1_ * D[j] + cos0_j * dcos_;
+      cos0_j *= cos0_;
+    }
+  }
+
   // G_k alone, to a few ulp relative, choosing the stable direction.
   R G(int k) const {
     if (k == 0) return theta_;

@@ -75,6 +75,21 @@ struct CosineMoments {
 };
 CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w);
 
+// Σ_k c_k ∫_A (a·u)^k (n·u) dσ and Σ_k c_k ∫_A (a·u)^k (z·u)(n·u) dσ for k = 0..K in one pass over
+// the edges, O(K·edges): the sky through glazing whose transmittance is a polynomial in the cosine
+// of incidence a·u (a unit). The orders come from eq. 11 (τ^k about a), eq. 14 (∫ (a·u)^k (n·u)
+// and ∫ (a·u)^k (z·u)) and Chen and Arvo's eq. 29 taken about n:
+//     (k + 3) ∫ (a·u)^k (z·u)(n·u) = k (a·n) ∫ (a·u)^{k−1} (z·u) + (n·z) τ^k + Σ_edges (n·m) ∫_arc (a·u)^k (z·u) ds.
+// Meant for K ≲ 20 (it uses the upward recurrence, exact there). Accuracy 1e-11 relative: the
+// cancellation among the c_k (fitted coefficients reach 1e5) counts in κ and usually sends the
+// sum to long double (moments.cpp says why the target is not 1e-13).
+struct PolynomialCosineMoments {
+  double cosine;         // Σ c_k ∫ (a·u)^k (n·u) dσ
+  double cosine_linear;  // Σ c_k ∫ (a·u)^k (z·u)(n·u) dσ
+};
+PolynomialCosineMoments polynomial_cosine_moments(const SphericalRegion& region, const Vec3& a, const Vec3& n,
+                                                  const Vec3& z, const std::vector<double>& c);
+
 // What the last call on this thread needed and achieved: the precision (0 double, 1 long double,
 // 2 __float128) and the estimated relative error 10·u·κ, κ = Σ|terms| / |result|. An estimate
 // above 1e-10 means cancellation beyond what __float128 carries.

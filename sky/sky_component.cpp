@@ -16,7 +16,13 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
   double irradiance = 0;
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
-    if (!region.empty()) irradiance += scene.apertures[a].transmittance * sky_irradiance(region, sensor.normal, sky);
+    if (region.empty()) continue;
+    const Aperture& aperture = scene.apertures[a];
+    if (aperture.angular_transmittance.empty())
+      irradiance += aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
+    else
+      irradiance += sky_irradiance_through_glazing(region, sensor.normal, sky, normalized(newell_normal(aperture.polygon.vertices)),
+                                                   aperture.angular_transmittance);
   }
   const double percent = 100 * irradiance / unobstructed_horizontal_irradiance(sky);
   // Only the float path can get here with a non-finite value (a division its rounding made

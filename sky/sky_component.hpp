@@ -20,9 +20,10 @@ struct SkyComponentResult {
 // Called now and then with the number of sensors finished so far (from any thread, serialised).
 using ProgressCallback = std::function<void(std::size_t done)>;
 
-// SC = 100 · Σ_apertures τ_a E_a / E_out, E_a the sky illuminance through the exact visible region
-// of aperture a. Runs in parallel over sensors (oneTBB, as many threads as the caller's arena
-// allows); every sensor is computed independently, so results do not depend on the thread count.
+// SC = 100 · Σ_apertures E_a / E_out, E_a the sky illuminance through the exact visible region
+// of aperture a times its transmittance (constant, or glass's polynomial in the cosine of incidence,
+// integrated with it: sky_irradiance_through_glazing). Runs in parallel over sensors (oneTBB,
+// as many threads as the caller's arena allows); every sensor is computed independently, so results do not depend on the thread count.
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                                  SkyModel sky, const ProgressCallback& progress = {});
 

@@ -24,6 +24,16 @@ double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky
   return (m.cosine + 2 * m.cosine_linear) / 3;
 }
 
+double sky_irradiance_through_glazing(const SphericalRegion& region, const Vec3& n, SkyModel sky, Vec3 a,
+                                      const std::vector<double>& c) {
+  if (region.empty()) return 0;
+  Vec3 inside{};
+  for (const Vec3& u : region.loops.front()) inside += normalized(u);
+  if (dot(a, inside) < 0) a = -1.0 * a;
+  const PolynomialCosineMoments m = polynomial_cosine_moments(region, a, n, {0, 0, 1}, c);
+  return sky == SkyModel::uniform ? m.cosine : (m.cosine + 2 * m.cosine_linear) / 3;
+}
+
 double unobstructed_horizontal_irradiance(SkyModel sky) noexcept {
   return sky == SkyModel::cie_overcast ? 7 * std::numbers::pi / 9 : std::numbers::pi;
 }

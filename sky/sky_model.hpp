@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geometry/spherical_region.hpp"
 
@@ -24,6 +25,14 @@ std::string_view sky_model_name(SkyModel sky) noexcept;
 // Overcast: E/L_z = (1/3) [∫_A (n·u) dσ + 2 ∫_A (z·u)(n·u) dσ] (DESIGN.md §3), exact: a Lambert
 // term and one double-axis moment of order 1 (Arvo 1995, eq. 14). Uniform: E/L = ∫_A (n·u) dσ.
 double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky);
+
+// The same through glazing of transmittance T(μ) = Σ_k c_k μ^k, μ = a·u the cosine of incidence
+// on a pane with unit normal a (either side: it is turned to face the region). Every term is a
+// closed form: uniform, Σ c_k ∫ (a·u)^k (n·u) dσ (double-axis moments, Arvo eq. 14); overcast,
+// (1/3) Σ c_k [∫ (a·u)^k (n·u) dσ + 2 ∫ (a·u)^k (z·u)(n·u) dσ], the second of pattern (k, 1, 1)
+// (Chen and Arvo 2000, eq. 29), all orders in one pass (polynomial_cosine_moments, moments.hpp).
+double sky_irradiance_through_glazing(const SphericalRegion& region, const Vec3& n, SkyModel sky, Vec3 a,
+                                      const std::vector<double>& c);
 
 // Unobstructed horizontal illuminance in the same units: 7π/9 for the overcast sky, π for the
 // uniform sky (SKY.md).

@@ -1,0 +1,135 @@
+#include "illumination/glass_transmittance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace daylit {
+
+namespace {
+
+constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
+
+// Σ c_k μ^k by Horner's rule.
+double evaluate(const std::vector<double>& c, double mu) {
+  double sum = 0;
+  for (auto it = c.rbegin(); it != c.rend(); ++it) sum = sum * mu + *it;
+  return sum;
+}
+
+// Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples,
+// by Householder QR in long double; then the monomial coefficients of the sum.
+std::vector<double> least_squares_monomials(const std::vector<double>& mu, const std::vector<double>& value,
+                                            const std::vector<double>& weight, int degree) {
+  const std::size_t m = mu.size(), n = std::size_t(degree) + 1;
+  std::vector<long double> A(m * n), b(m);
+  for (std::size_t i = 0; i < m; ++i) b[i] = std::sqrt((long double)weight[i]) * value[i];
+  for (std::size_t i = 0; i < m; ++i) {
+    const long double x = 2.0L * mu[i] - 1;
+    long double t0 = 1, t1 = x;
+    for (std::size_t j = 0; j < n; ++j) {
+      A[i * n + j] = j == 0 ? t0 : (j == 1 ? t1 : 0);
+      if (j >= 2) {
+        const long double t2 = 2 * x * t1 - t0;
+        A[i * n + j] = t2;
+        t0 = t1;
+        t1 = t2;
+      }
+    }
+    for (std::size_t j = 0; j < n; ++j) A[i * n + j] *= std::sqrt((long double)weight[i]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    long double norm = 0;
+    for (std::size_t i = k; i < m; ++i) norm += A[i * n + k] * A[i * n + k];
+    norm = std::sqrt(norm);
+    const long double alpha = A[k * n + k] > 0 ? -norm : norm;
+    std::vector<long double> v(m, 0);
+    for (std::size_t i = k; i < m; ++i) v[i] = A[i * n + k];
+    v[k] -= alpha;
+    long double vv = 0;
+    for (std::size_t i = k; i < m; ++i) vv += v[i] * v[i];
+    if (vv == 0) continue;
+    for (std::size_t j = k; j < n; ++j) {
+      long double s = 0;
+      for (std::size_t i = k; i < m; ++i) s += v[i] * A[i * n + j];
+      s = 2 * s / vv;
+      for (std::size_t i = k; i < m; ++i) A[i * n + j] -= s * v[i];
+    }
+    long double s = 0;
+    for (std::size_t i = k; i < m; ++i) s += v[i] * b[i];
+    s = 2 * s / vv;
+    for (std::size_t i = k; i < m; ++i) b[i] -= s * v[i];
+  }
+  std::vector<long double> chebyshev(n);
+  for (std::size_t k = n; k-- > 0;) {
+    long double s = b[k];
+    for (std::size_t j = k + 1; j < n; ++j) s -= A[k * n + j] * chebyshev[j];
+    chebyshev[k] = s / A[k * n + k];
+  }
+  // Monomials in μ of T_j(2μ − 1), by T_{j+1} = 2(2μ − 1) T_j − T_{j−1}.
+  std::vector<long double> monomial(n, 0), previous(n, 0), current(n, 0);
+  previous[0] = 1;                      // T_0
+  current[0] = -1, current[1] = 2;      // T_1 = 2μ − 1
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::vector<long double>& T = j == 0 ? previous : current;
+    for (std::size_t k = 0; k < n; ++k) monomial[k] += chebyshev[j] * T[k];
+    if (j >= 1 && j + 1 < n) {
+      std::vector<long double> next(n, 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        next[k] = -2 * current[k] - previous[k];
+        if (k > 0) next[k] += 4 * current[k - 1];
+      }
+      previous = current;
+      current = next;
+    }
+  }
+  return {monomial.begin(), monomial.end()};
+}
+
+}  // namespace
+
+double glass_transmittance(const GlassOptics& glass, double mu) {
+  mu = std::clamp(mu, 0.0, 1.0);
+  if (mu == 0) return 0;  // grazing: the Fresnel reflectances reach 1
+  const double n = glass.refractive_index;
+  const double cos_t = std::sqrt((1 - 1 / (n * n)) + mu * mu / (n * n));
+  const double rs = std::pow((mu - n * cos_t) / (mu + n * cos_t), 2);
+  const double rp = std::pow((1 / mu - n / cos_t) / (1 / mu + n / cos_t), 2);
+  double total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = std::pow(glass.transmissivity[c], 1 / cos_t);
+    const double t = 0.5 * (1 - rs) * (1 - rs) * d / (1 - rs * rs * d * d) + 0.5 * (1 - rp) * (1 - rp) * d / (1 - rp * rp * d * d);
+    total += kLuminanceWeights[c] * t;
+  }
+  return total;
+}
+
+TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double tolerance) {
+  constexpr int kSamples = 600, kChecks = 20001, kMaxDegree = 12;
+  std::vector<double> mu(kSamples), value(kSamples);
+  for (int i = 0; i < kSamples; ++i) {
+    mu[i] = 0.5 * (1 - std::cos(std::numbers::pi * (i + 0.5) / kSamples));  // Chebyshev points on [0, 1]
+    value[i] = glass_transmittance(glass, mu[i]);
+  }
+  std::vector<double> check_mu(kChecks), check_value(kChecks);
+  for (int i = 0; i < kChecks; ++i) {
+    check_mu[i] = double(i) / (kChecks - 1);
+    check_value[i] = glass_transmittance(glass, check_mu[i]);
+  }
+  auto max_error = [&](const std::vector<double>& c) {
+    double e = 0;
+    for (int i = 0; i < kChecks; ++i) e = std::max(e, std::abs(evaluate(c, check_mu[i]) - check_value[i]));
+    return e;
+  };
+  TransmittancePolynomial best;
+  const std::vector<double> weight(kSamples, 1.0);
+  for (int degree = 1; degree <= kMaxDegree; ++degree) {
+    TransmittancePolynomial fit{least_squares_monomials(mu, value, weight, degree), 0};
+    fit.max_error = max_error(fit.coefficients);
+    if (best.coefficients.empty() || fit.max_error < best.max_error) best = fit;
+    if (best.max_error <= tolerance) break;
+  }
+  return best;
+}
+
+}  // namespace daylit
