@@ -5,6 +5,7 @@
 #include <exception>
 #include <iostream>
 
+#include "cli/bench_command.hpp"
 #include "cli/df_command.hpp"
 #include "cli/eval_command.hpp"
 #include "geometry/error.hpp"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   auto run_df = daylit::cli::add_df_command(app);
   auto run_eval = daylit::cli::add_eval_command(app);
+  auto run_bench = daylit::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("df")) return run_df();
     if (app.got_subcommand("eval")) return run_eval();
+    if (app.got_subcommand("bench")) return run_bench();
   } catch (const daylit::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;

@@ -16,31 +16,24 @@ FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> fa
   for (const Factor& f : factors)
     if (!(norm(f.axis) > 0) || !is_finite(f.axis)) throw Error("a factor axis must be a finite non-zero vector");
 
-  double scale = 1, value = 0;
+  // The kernels normalise the axes themselves, in the precision they compute in, and raise |a|
+  // to the power from |a|² in long double (moments.cpp).
+  double value = 0;
   if (factors.empty()) {
     return {solid_angle(region), 1e-15};
   } else if (factors.size() == 1) {
-    const double length = norm(factors[0].axis);
-    scale = std::pow(length, factors[0].power);
-    value = axial_moment(region, factors[0].axis / length, factors[0].power);
+    value = axial_moment(region, factors[0].axis, factors[0].power);
   } else if (factors.size() == 2 && factors[1].power == 1) {
-    const double la = norm(factors[0].axis), lb = norm(factors[1].axis);
-    scale = std::pow(la, factors[0].power) * lb;
-    value = double_axis_moment(region, factors[0].axis / la, factors[1].axis / lb, factors[0].power);
+    value = double_axis_moment(region, factors[0].axis, factors[1].axis, factors[0].power);
   } else if (factors.size() == 3 && factors[1].power == 1 && factors[2].power == 1) {
-    const double la = norm(factors[0].axis), lb = norm(factors[1].axis), lc = norm(factors[2].axis);
-    scale = std::pow(la, factors[0].power) * lb * lc;
-    value = triple_axis_moment(region, factors[0].axis / la, factors[1].axis / lb, factors[2].axis / lc,
-                               factors[0].power);
+    value = triple_axis_moment(region, factors[0].axis, factors[1].axis, factors[2].axis, factors[0].power);
   } else {
     std::string pattern;
     for (const Factor& f : factors) pattern += (pattern.empty() ? "" : ",") + std::to_string(f.power);
-    throw Error("factor pattern (" + pattern + ") is not supported yet; supported: (), (n), (n,1), (n,1,1)");
+    throw Error("factor pattern (" + pattern + ") is not supported; supported: (), (n), (n,1), (n,1,1)");
   }
-  const double result = scale * value;
-  if (!std::isfinite(result) || (scale == 0 && value != 0))
-    throw Error("the factors' lengths raised to their powers overflow or underflow double");
-  return {result, last_moment_accuracy().relative_error};
+  if (!std::isfinite(value)) throw Error("the factors' lengths raised to their powers overflow double");
+  return {value, last_moment_accuracy().relative_error};
 }
 
 }  // namespace daylit

@@ -21,7 +21,7 @@ struct FactorMoment {
 // Patterns (after dropping powers 0): () the solid angle; (n) the axial moment (Arvo eq. 11);
 // (n, 1) in either order the double-axis moment (eq. 14); (n, 1, 1) by Chen and Arvo's eq. 29
 // (moments.hpp). All O(n·edges) closed forms, accurate at every order. Others throw
-// daylit::Error naming the pattern. Throws as well when |a|^p over- or underflows.
+// daylit::Error naming the pattern. Throws as well when |a|^p overflows (an underflow gives 0).
 FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> factors);
 
 }  // namespace daylit

@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -162,4 +163,22 @@ TEST_CASE("early termination returns a bound that holds and does less work where
   const auto far = Rectangle{1, 2, -0.5, 0.5}.region();
   const TruncatedMoment t = axial_moment_truncated(far, w, n, 1e-6);
   CHECK(std::abs(t.value - axial_moment(far, w, n)) <= t.error_bound);
+}
+
+TEST_CASE("a non-convex luminaire with a hole at n = 500: the L-shape and the frame add up") {
+  // An L-shaped polygon (one non-convex loop) and a frame (outer loop and a reversed inner loop)
+  // against the sums and differences of rectangles they are made of.
+  const Vec3 w = normalized(Vec3{0.1, 0.05, 1}), v{0.3, -0.2, 0.9};
+  const int n = 500;
+  const auto L = directions_through({{0.2, -0.2, 1}, {0.6, -0.2, 1}, {0.6, 0.0, 1}, {0.4, 0.0, 1}, {0.4, 0.2, 1}, {0.2, 0.2, 1}}, {});
+  const double parts = axial_moment(Rectangle{0.2, 0.6, -0.2, 0.0}.region(), w, n) +
+                       axial_moment(Rectangle{0.2, 0.4, 0.0, 0.2}.region(), w, n);
+  CHECK(axial_moment(L, w, n) == Approx(parts).epsilon(1e-12));
+  SphericalRegion frame = Rectangle{-0.3, 0.3, -0.3, 0.3}.region();
+  DirectionLoop hole = Rectangle{-0.1, 0.1, -0.1, 0.1}.region().loops[0];
+  std::reverse(hole.begin(), hole.end());
+  frame.loops.push_back(hole);
+  const double difference = double_axis_moment(Rectangle{-0.3, 0.3, -0.3, 0.3}.region(), w, v, n) -
+                            double_axis_moment(Rectangle{-0.1, 0.1, -0.1, 0.1}.region(), w, v, n);
+  CHECK(double_axis_moment(frame, w, v, n) == Approx(difference).epsilon(1e-12));
 }

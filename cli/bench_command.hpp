@@ -1,0 +1,15 @@
+#pragma once
+// `daylit bench SUITE`: error against run time of the approximate paths beside the exact ones, on
+// the same cases, as CSV tables and log–log plots a reader can open (DESIGN.md §6). Suites so
+// far: `kernels` (the moment kernels against early termination and Monte Carlo).
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace daylit::cli {
+
+// Registers `bench` and its suites; returns a function that runs the suite named after parsing.
+std::function<int()> add_bench_command(CLI::App& app);
+
+}  // namespace daylit::cli
