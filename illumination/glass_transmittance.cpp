@@ -1,5 +1,7 @@
 #include "illumination/glass_transmittance.hpp"
 
+#include "illumination/least_squares.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -17,55 +19,26 @@ double evaluate(const std::vector<double>& c, double mu) {
   return sum;
 }
 
-// Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples,
-// by Householder QR in long double; then the monomial coefficients of the sum.
-std::vector<double> least_squares_monomials(const std::vector<double>& mu, const std::vector<double>& value,
-                                            const std::vector<double>& weight, int degree) {
+// Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples
+// (the well-conditioned basis), then the monomial coefficients of the sum.
+std::vector<double> least_squares_monomials(const std::vector<double>& mu, const std::vector<double>& value, int degree) {
   const std::size_t m = mu.size(), n = std::size_t(degree) + 1;
-  std::vector<long double> A(m * n), b(m);
-  for (std::size_t i = 0; i < m; ++i) b[i] = std::sqrt((long double)weight[i]) * value[i];
+  std::vector<long double> A(m * n), b(value.begin(), value.end());
   for (std::size_t i = 0; i < m; ++i) {
     const long double x = 2.0L * mu[i] - 1;
     long double t0 = 1, t1 = x;
     for (std::size_t j = 0; j < n; ++j) {
-      A[i * n + j] = j == 0 ? t0 : (j == 1 ? t1 : 0);
-      if (j >= 2) {
+      if (j < 2) {
+        A[i * n + j] = j == 0 ? t0 : t1;
+      } else {
         const long double t2 = 2 * x * t1 - t0;
         A[i * n + j] = t2;
         t0 = t1;
         t1 = t2;
       }
     }
-    for (std::size_t j = 0; j < n; ++j) A[i * n + j] *= std::sqrt((long double)weight[i]);
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    long double norm = 0;
-    for (std::size_t i = k; i < m; ++i) norm += A[i * n + k] * A[i * n + k];
-    norm = std::sqrt(norm);
-    const long double alpha = A[k * n + k] > 0 ? -norm : norm;
-    std::vector<long double> v(m, 0);
-    for (std::size_t i = k; i < m; ++i) v[i] = A[i * n + k];
-    v[k] -= alpha;
-    long double vv = 0;
-    for (std::size_t i = k; i < m; ++i) vv += v[i] * v[i];
-    if (vv == 0) continue;
-    for (std::size_t j = k; j < n; ++j) {
-      long double s = 0;
-      for (std::size_t i = k; i < m; ++i) s += v[i] * A[i * n + j];
-      s = 2 * s / vv;
-      for (std::size_t i = k; i < m; ++i) A[i * n + j] -= s * v[i];
-    }
-    long double s = 0;
-    for (std::size_t i = k; i < m; ++i) s += v[i] * b[i];
-    s = 2 * s / vv;
-    for (std::size_t i = k; i < m; ++i) b[i] -= s * v[i];
-  }
-  std::vector<long double> chebyshev(n);
-  for (std::size_t k = n; k-- > 0;) {
-    long double s = b[k];
-    for (std::size_t j = k + 1; j < n; ++j) s -= A[k * n + j] * chebyshev[j];
-    chebyshev[k] = s / A[k * n + k];
-  }
+  const std::vector<long double> chebyshev = least_squares(std::move(A), std::move(b), m, n);
   // Monomials in μ of T_j(2μ − 1), by T_{j+1} = 2(2μ − 1) T_j − T_{j−1}.
   std::vector<long double> monomial(n, 0), previous(n, 0), current(n, 0);
   previous[0] = 1;                      // T_0
@@ -122,9 +95,8 @@ TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double
     return e;
   };
   TransmittancePolynomial best;
-  const std::vector<double> weight(kSamples, 1.0);
   for (int degree = 1; degree <= kMaxDegree; ++degree) {
-    TransmittancePolynomial fit{least_squares_monomials(mu, value, weight, degree), 0};
+    TransmittancePolynomial fit{least_squares_monomials(mu, value, degree), 0};
     fit.max_error = max_error(fit.coefficients);
     if (best.coefficients.empty() || fit.max_error < best.max_error) best = fit;
     if (best.max_error <= tolerance) break;
