@@ -8,15 +8,19 @@
 #include "cli/bench_command.hpp"
 #include "cli/df_command.hpp"
 #include "cli/eval_command.hpp"
+#include "cli/sun_command.hpp"
 #include "geometry/error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app("daylit: exact daylight factors. Windows are clipped against the geometry in exact\n"
                "arithmetic and the sky is integrated over what stays visible in closed form.");
   app.require_subcommand(1);
+  // Argument errors read like every other error: "error: --site: latitude 95 is not within …".
+  app.failure_message([](const CLI::App* a, const CLI::Error& e) { return "error: " + CLI::FailureMessage::simple(a, e); });
   auto run_df = daylit::cli::add_df_command(app);
   auto run_eval = daylit::cli::add_eval_command(app);
   auto run_bench = daylit::cli::add_bench_command(app);
+  auto run_sun = daylit::cli::add_sun_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -26,6 +30,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("df")) return run_df();
     if (app.got_subcommand("eval")) return run_eval();
     if (app.got_subcommand("bench")) return run_bench();
+    if (app.got_subcommand("sun")) return run_sun();
   } catch (const daylit::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;

@@ -1,0 +1,14 @@
+#pragma once
+// `daylit sun`: the sun's topocentric zenith and azimuth at a site and an instant (NREL's SPA,
+// sky/solar_position.hpp), as one line of JSON.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace daylit::cli {
+
+// Registers the subcommand; returns a function that runs it after parsing.
+std::function<int()> add_sun_command(CLI::App& app);
+
+}  // namespace daylit::cli
