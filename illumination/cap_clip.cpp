@@ -1,0 +1,105 @@
+#include "illumination/cap_clip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "illumination/arc_edge.hpp"
+#include "illumination/cosine_power_arc.hpp"
+
+namespace daylit {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+struct Crossing {
+  double angle;  // on the cap's circle, φ ∈ (−π, π]
+  int change;    // of the winding number when the circle passes it in the direction of increasing φ
+};
+
+}  // namespace
+
+double cap_lambert(const SphericalRegion& region, const Vec3& axis, double rho, const Vec3& n) {
+  const Vec3 s = normalized(axis);
+  const Vec3 p = normalized(cross(s, std::abs(s.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}));
+  const Vec3 q = cross(s, p);
+  const double sin_rho = std::sin(rho), cos_rho = std::cos(rho);
+  const real::V3<double> sv(s);
+  double sum = 0;
+  std::vector<Crossing> crossings;
+  std::vector<ArcEdge<double>> arcs;
+  for (const DirectionLoop& loop : region.loops) {
+    const std::size_t count = loop.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto arc = arc_edge(real::V3<double>(loop[i]), real::V3<double>(loop[(i + 1) % count]));
+      if (!arc) continue;
+      arcs.push_back(*arc);
+      // The part of the arc inside the cap: t with s·u(t) = c cos(t − φ) ≥ cos ρ.
+      const double X = dot(sv, arc->start), beta = dot(sv, arc->start_tangent), sm = dot(sv, arc->normal);
+      const double d2 = (sin_rho - std::abs(sm)) * (sin_rho + std::abs(sm));
+      if (!(d2 > 0)) continue;  // the arc's great circle misses the cap
+      const double alpha = std::atan2(std::sqrt(d2), cos_rho);
+      double phi = std::atan2(beta, X);
+      // The interval [φ − α, φ + α] (length < π) against [0, θ], θ ≤ π: try φ and φ ± 2π.
+      const Vec3 m{arc->normal.x, arc->normal.y, arc->normal.z};
+      const Vec3 a{arc->start.x, arc->start.y, arc->start.z}, ta{arc->start_tangent.x, arc->start_tangent.y, arc->start_tangent.z};
+      for (double shift : {-2 * pi, 0.0, 2 * pi}) {
+        const double lo = phi + shift - alpha, hi = phi + shift + alpha;
+        const double t0 = std::max(lo, 0.0), t1 = std::min(hi, double(arc->length));
+        if (!(t1 > t0)) continue;
+        sum += 0.5 * dot(n, m) * (t1 - t0);
+        // Where the arc enters (t = lo) or leaves (t = hi) the cap within the arc, the circle
+        // crosses it.
+        for (const double t : {lo, hi}) {
+          if (t < 0 || t > double(arc->length)) continue;
+          const Vec3 x = std::cos(t) * a + std::sin(t) * ta;
+          const double angle = std::atan2(dot(x, q), dot(x, p));
+          const Vec3 tangent = -std::sin(angle) * p + std::cos(angle) * q;
+          crossings.push_back({angle, dot(tangent, m) > 0 ? 1 : -1});
+        }
+      }
+    }
+  }
+  // The circle is walked once around from a start point in the middle of the widest gap between
+  // crossings (never on an arc: a shadow edge through the sun's centre crosses at φ = 0).
+  for (Crossing& c : crossings)
+    if (c.angle < 0) c.angle += 2 * pi;
+  std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.angle < b.angle; });
+  double start = 0;
+  if (!crossings.empty()) {
+    double widest = crossings.front().angle + 2 * pi - crossings.back().angle;
+    start = crossings.back().angle + widest / 2;
+    for (std::size_t i = 1; i < crossings.size(); ++i)
+      if (const double gap = crossings[i].angle - crossings[i - 1].angle; gap > widest) {
+        widest = gap;
+        start = crossings[i - 1].angle + gap / 2;
+      }
+    if (start >= 2 * pi) start -= 2 * pi;
+    for (Crossing& c : crossings)
+      if (c.angle < start) c.angle += 2 * pi;
+    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.angle < b.angle; });
+  }
+  // A's winding number there, from the complete series of eq. 11 about that direction (odd
+  // orders: [u ∈ A] − [−u ∈ A]; −u lies in A only for regions wider than a hemisphere about it,
+  // which visible regions never are).
+  const real::V3<double> start_point(cos_rho * s + sin_rho * (std::cos(start) * p + std::sin(start) * q));
+  double series = 0;
+  for (const auto& arc : arcs) series += CosinePowerArc<double>(arc, start_point).even_series_times_wm();
+  int winding = int(std::lround(series / (2 * pi)));
+  auto circle_term = [&](double phi0, double phi1) {
+    const Vec3 chord = (std::sin(phi1) - std::sin(phi0)) * p - (std::cos(phi1) - std::cos(phi0)) * q;
+    return 0.5 * (sin_rho * sin_rho * (phi1 - phi0) * dot(n, s) - sin_rho * cos_rho * dot(n, chord));
+  };
+  double from = start;
+  for (const Crossing& c : crossings) {
+    if (winding != 0) sum += winding * circle_term(from, c.angle);
+    winding += c.change;
+    from = c.angle;
+  }
+  if (winding != 0) sum += winding * circle_term(from, start + 2 * pi);
+  return sum;
+}
+
+}  // namespace daylit
