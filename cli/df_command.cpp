@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,8 @@
 #include "cli/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
+#include "sky/context_buildings.hpp"
+#include "sky/site.hpp"
 #include "sky/sky_component.hpp"
 
 namespace daylit::cli {
@@ -27,6 +30,8 @@ struct DfOptions {
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
   std::string out, summary, image;
+  std::string site, context;
+  double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
   int threads = 0;
   bool quiet = false;
 };
@@ -66,11 +71,25 @@ int run_df(const DfOptions& opt) {
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 
-  const Scene scene = load_scene(opt.scene_files, opt.aperture_files);
+  if (!opt.context.empty() && opt.site.empty())
+    throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
+  Scene scene = load_scene(opt.scene_files, opt.aperture_files);
   if (scene.apertures.empty())
     throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
   std::vector<SensorGrid> grids;
   for (const auto& f : opt.grid_files) grids.push_back(read_sensor_grid(f));
+  std::optional<Site> site;
+  std::optional<ContextPlacement> context;
+  if (!opt.site.empty()) {
+    site = read_site_file(opt.site);
+    scene.notices.push_back("site " + opt.site + ": " + site->description());
+  }
+  if (!opt.context.empty()) {
+    const ContextBuildings buildings = read_context_buildings(opt.context, *site);
+    scene.notices.insert(scene.notices.end(), buildings.notices.begin(), buildings.notices.end());
+    context = place_context_buildings(buildings, grids, sky, opt.context_min_angle_deg, scene);
+    scene.notices.insert(scene.notices.end(), context->notices.begin(), context->notices.end());
+  }
   if (!opt.quiet)
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
 
@@ -109,6 +128,34 @@ int run_df(const DfOptions& opt) {
        {{"erc", "externally reflected component: not computed (obstructions are black)"},
         {"irc", "internally reflected component: not computed (room surfaces are black)"}}},
       {"df_percent_is", "sc_percent"}};
+  if (site) {
+    const GeographicPosition& o = site->origin();
+    summary["site"] = {{"path", opt.site},
+                       {"latitude_deg", o.latitude_deg},
+                       {"longitude_deg", o.longitude_deg},
+                       {"elevation_m", o.height_m},
+                       {"north_deg", site->north_deg()},
+                       {"ground_z_m", site->ground_z_m()}};
+    if (const auto& utm = site->utm_grid())
+      summary["site"]["utm"] = {{"zone", utm->zone},
+                                {"northern", utm->northern},
+                                {"origin_easting_m", utm->origin_easting_m},
+                                {"origin_northing_m", utm->origin_northing_m},
+                                {"meridian_convergence_deg", utm->convergence_deg}};
+  }
+  if (context)
+    summary["context"] = {{"path", opt.context},
+                          {"buildings_read", context->read},
+                          {"placed", context->placed},
+                          {"faces", context->faces},
+                          {"left_out",
+                           {{"holding_the_model", context->enclosing_model},
+                            {"below_the_horizon", context->below_horizon},
+                            {"behind_the_apertures", context->behind_apertures},
+                            {"smaller_than_min_angle", context->too_small}}},
+                          {"min_angle_deg", context->min_angular_size_deg},
+                          {"sc_change_bound_percent", context->sc_change_bound_percent},
+                          {"rule", context->rule}};
   summary["scene"] = {{"occluders", scene.occluders.size()},
                       {"occluder_pieces", engine.occluder_piece_count()},
                       {"apertures", scene.apertures.size()},
@@ -153,7 +200,11 @@ std::function<int()> add_df_command(CLI::App& app) {
       "Computes the daylight factor at every sensor of the grids under a CIE overcast (or uniform) sky.\n"
       "Each aperture is clipped exactly against the occluders as seen from each sensor, and the sky is\n"
       "integrated over what stays visible in closed form: no rays, no noise. Reported: the sky component\n"
-      "(SC); externally and internally reflected components are not computed yet, so DF = SC.");
+      "(SC); externally and internally reflected components are not computed yet, so DF = SC.\n"
+      "With --site and --context, neighbouring buildings given as GeoJSON footprints (WGS84, with a\n"
+      "height property) are placed in the model frame and extruded into opaque prisms; those that cannot\n"
+      "be seen through any aperture, and those smaller than --context-min-angle from every aperture, are\n"
+      "left out, and the summary says how many and bounds what that changes.");
   df->add_option("--scene", opt->scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   df->add_option("--apertures", opt->aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
@@ -168,6 +219,19 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "doubles, for comparison) or rational (rationals throughout: a slow reference)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  df->add_option("--site", opt->site,
+                 "Site JSON: {\"latitude_deg\", \"longitude_deg\", \"elevation_m\", \"north_deg\"} (north_deg: true north's angle "
+                 "clockwise from the model's +y, seen from above) or {\"utm\": {\"zone\", \"northern\"}, \"origin_easting_m\", "
+                 "\"origin_northing_m\", \"elevation_m\"} for a model on a UTM grid")
+      ->check(CLI::ExistingFile);
+  df->add_option("--context", opt->context,
+                 "GeoJSON of neighbouring buildings: Polygon/MultiPolygon footprints in WGS84 with a \"height\" property "
+                 "(m; optional \"min_height\" or \"base\"), extruded into occluders; needs --site")
+      ->check(CLI::ExistingFile);
+  df->add_option("--context-min-angle", opt->context_min_angle_deg,
+                 "Leave out context buildings whose angular size from every aperture is below this (degrees; default 0.1, "
+                 "0: keep all that can be seen); the summary bounds the change it makes")
+      ->check(CLI::Range(0.0, 179.0));
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_df(*opt); };
 }

@@ -7,6 +7,7 @@ packages=(
   libtbb-dev                           # threads
   libopenimageio-dev fonts-dejavu-core # falsecolour images and their legends
   libcli11-dev nlohmann-json3-dev libfmt-dev
+  libgeographiclib-dev                 # site placement: WGS84, UTM, local east-north-up frames
   catch2                               # tests (v2)
 )
 sudo=""

@@ -33,3 +33,26 @@ for sample in office hall; do
   largest_difference "$sample exact/float" "$work/$sample-exact.csv" "$work/$sample-float.csv" 1e-9
   largest_difference "$sample exact/rational" "$work/$sample-subset-exact.csv" "$work/$sample-rational.csv" 1e-12
 done
+
+# The city sample: neighbours from GeoJSON placed by the site file. The summary counts what was
+# placed and left out, the certified path still reproduces the rational reference, and --context
+# without --site is refused.
+dir=$samples/city
+city=(--scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --site "$dir/site.json" --context "$dir/buildings.geojson")
+"$daylit" df "${city[@]}" --grid "$dir/grid.pts" --out "$work/city.csv" --summary "$work/city.json" --quiet
+for expected in '"buildings_read": 11' '"placed": 4' '"holding_the_model": 1' '"below_the_horizon": 1' \
+                '"behind_the_apertures": 3' '"smaller_than_min_angle": 2'; do
+  grep -q "$expected" "$work/city.json" || { echo "city summary lacks $expected"; exit 1; }
+done
+awk 'NR % 20 == 1' "$dir/grid.pts" > "$work/city-subset.pts"
+for geometry in exact rational; do
+  "$daylit" df "${city[@]}" --grid "$work/city-subset.pts" --geometry "$geometry" \
+    --out "$work/city-subset-$geometry.csv" --quiet
+done
+largest_difference "city exact/rational" "$work/city-subset-exact.csv" "$work/city-subset-rational.csv" 1e-12
+if "$daylit" df --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$dir/grid.pts" \
+     --context "$dir/buildings.geojson" --out "$work/no-site.csv" --quiet 2> "$work/no-site.err"; then
+  echo "city: --context without --site was accepted"; exit 1
+fi
+grep -q "needs --site" "$work/no-site.err" && [ ! -e "$work/no-site.csv" ]
+echo "city: context counts as expected, exact/rational agree, --context without --site refused"
