@@ -17,8 +17,12 @@ std::string StagedOutputs::stage(const std::string& target) {
   const auto parent = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   if (!std::filesystem::is_directory(parent)) throw Error(target + ": output directory does not exist");
   // Keep the extension last: image writers choose the format by it.
-  const std::filesystem::path temporary =
-      parent / ("." + path.stem().string() + ".partial-" + std::to_string(::getpid()) + path.extension().string());
+  std::string name = ".";  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + string
+  name += path.stem().string();
+  name += ".partial-";
+  name += std::to_string(::getpid());
+  name += path.extension().string();
+  const std::filesystem::path temporary = parent / name;
   entries_.push_back({temporary, path});
   return temporary.string();
 }

@@ -29,7 +29,10 @@ FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> fa
     value = triple_axis_moment(region, factors[0].axis, factors[1].axis, factors[2].axis, factors[0].power);
   } else {
     std::string pattern;
-    for (const Factor& f : factors) pattern += (pattern.empty() ? "" : ",") + std::to_string(f.power);
+    for (const Factor& f : factors) {
+      if (!pattern.empty()) pattern += ',';
+      pattern += std::to_string(f.power);
+    }
     throw Error("factor pattern (" + pattern + ") is not supported; supported: (), (n), (n,1), (n,1,1)");
   }
   if (!std::isfinite(value)) throw Error("the factors' lengths raised to their powers overflow double");
