@@ -33,6 +33,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "cli/bench_suites.hpp"
 #include "cli/plot.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/staged_output.hpp"
@@ -49,12 +50,6 @@ namespace {
 using clock_type = std::chrono::steady_clock;
 
 double seconds_since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
-
-struct BenchOptions {
-  std::string out;
-  bool quick = false;
-  bool quiet = false;
-};
 
 // What a run measures: --quick trims every list and the timing target, not the method set.
 struct KernelSuiteSettings {
@@ -523,10 +518,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Error against run time of approximate paths beside the exact ones");
   bench->footer(
       "Measures each approximate path beside the exact one on the same cases and writes the results as CSV\n"
-      "tables and log-log plots (PNG) into --out. Suites: kernels.");
+      "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff.");
   bench->require_subcommand(1);
 
-  // Each suite: a subcommand with the common options and its runner. More suites (scenes) plug in here.
+  // Each suite: a subcommand with the common options and its runner (bench_suites.hpp).
   struct Suite {
     CLI::App* command;
     std::shared_ptr<BenchOptions> options;
@@ -549,6 +544,24 @@ std::function<int()> add_bench_command(CLI::App& app) {
             "__float128 reference; then times the axial moment on polygons of 4, 16 and 64 edges for orders 1 ...\n"
             "10,000. Writes kernels_error_vs_time.csv/.png and kernels_cost_per_edge.csv/.png. One core.",
             run_kernels);
+  add_suite("scenes", "The samples: exact and float geometry, Monte Carlo and cubature; scaling",
+            "On the bundled office and hall: the sky component by exact and float geometry (whole grids), Monte\n"
+            "Carlo ray casting (stratified, sky x cosine importance, N = 16 ... 65,536 rays) and adaptive cubature\n"
+            "over the exact visible region (tolerances 1e-2 ... 1e-12) on 200 sensors per sample, timed on one core\n"
+            "and compared with the exact closed form; then run time (all cores) against the number of sensors (up\n"
+            "to 100,000), occluders, apertures and window edges, with fitted exponents, and the share of pairs\n"
+            "that needed exact construction. Writes scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png,\n"
+            "scenes_scaling_fit.csv and scenes_pairs.csv, and prints the tables. About 6 minutes of CPU time\n"
+            "(--quick: about 6 s).",
+            run_bench_scenes);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled samples office/ and hall/ (default: samples)");
+  add_suite("stiff", "Stiff scenes: exact and float geometry against independent references",
+            "Receivers in the window's plane, windows seen edge-on, a 1e-12 sr skylight 1 km away, a 2 km opening\n"
+            "1 mm away, slivers, flush reveals, coplanar walls, rotated and georeferenced copies: each by exact and\n"
+            "float geometry against a long-double polar quadrature over the hand-derived visible part. Writes\n"
+            "stiff.csv and prints a table of where float geometry fails and by how much.",
+            run_bench_stiff);
   return [suites] {
     for (const Suite& s : *suites)
       if (s.command->parsed()) return s.run(*s.options);

@@ -1,7 +1,9 @@
 #pragma once
 // `daylit bench SUITE`: error against run time of the approximate paths beside the exact ones, on
-// the same cases, as CSV tables and log–log plots a reader can open (DESIGN.md §6). Suites so
-// far: `kernels` (the moment kernels against early termination and Monte Carlo).
+// the same cases, as CSV tables and log–log plots a reader can open (DESIGN.md §6). Suites:
+// `kernels` (the moment kernels against early termination and Monte Carlo), `scenes` (the samples:
+// exact and float geometry, Monte Carlo, cubature; scaling) and `stiff` (stiff scenes against
+// independent references); see bench_suites.hpp.
 
 #include <CLI/CLI.hpp>
 

@@ -5,6 +5,7 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <cmath>
 #include <list>
 #include <map>
@@ -55,7 +56,10 @@ bool exactly_planar(const std::vector<Vec3>& v, int b, int c) {
   return true;
 }
 
-// Convex in the 2D projection: all turns of one sign (collinear ones allowed) and one winding.
+// Convex in the 2D projection: all turns of one sign (collinear ones allowed) and one winding,
+// no turn back along the same line and no vertex visited twice. (A spike out and back along an
+// edge, A B C A D, has neither kind of wrong turn: fuzz_visibility found it kept whole, and its
+// visible solid angle negative. The triangulation cancels such seams.)
 bool convex_in_projection(const std::vector<Vec3>& v, int k) {
   const std::size_t m = v.size();
   int sign = 0;
@@ -63,14 +67,20 @@ bool convex_in_projection(const std::vector<Vec3>& v, int k) {
   for (std::size_t i = 0; i < m; ++i) {
     const Point2 a = drop(v[i], k), b = drop(v[(i + 1) % m], k), c = drop(v[(i + 2) % m], k);
     const int o = int(CGAL::orientation(a, b, c));
+    const double e1x = b.x() - a.x(), e1y = b.y() - a.y(), e2x = c.x() - b.x(), e2y = c.y() - b.y();
+    // For collinear a, b, c both products have the sign of the exact dot product: so has the sum.
+    if (o == 0 && e1x * e2x + e1y * e2y < 0) return false;
     if (o != 0) {
       if (sign != 0 && o != sign) return false;
       sign = o;
     }
-    const double e1x = b.x() - a.x(), e1y = b.y() - a.y(), e2x = c.x() - b.x(), e2y = c.y() - b.y();
     turning += std::atan2(e1x * e2y - e1y * e2x, e1x * e2x + e1y * e2y);
   }
-  return sign != 0 && std::abs(std::abs(turning) - 2 * std::numbers::pi) < 1.0;
+  if (sign == 0 || !(std::abs(std::abs(turning) - 2 * std::numbers::pi) < 1.0)) return false;
+  std::vector<std::pair<double, double>> points;
+  for (const Vec3& p : v) points.emplace_back(drop(p, k).x(), drop(p, k).y());
+  std::sort(points.begin(), points.end());
+  return std::adjacent_find(points.begin(), points.end()) == points.end();
 }
 
 ConvexPiece make_piece(std::vector<Vec3> vertices, int k, std::size_t source) {

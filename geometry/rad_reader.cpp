@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/input_checks.hpp"
 #include "geometry/text_scanner.hpp"
 
 namespace daylit {
@@ -36,24 +37,43 @@ bool material_arity_ok(const std::string& type, std::size_t n) {
   return true;
 }
 
-void check_polygon(const Polygon& poly) {
-  const auto& v = poly.vertices;
-  const Vec3 normal = newell_normal(v);
-  double extent = 0;
-  for (const Vec3& p : v) extent = std::max(extent, norm(p - v[0]));
-  const double area2 = norm(normal);
-  if (!(area2 > 0) || area2 <= 1e-24 * extent * extent)
-    throw input_error(poly.where, "polygon '" + poly.name + "' has zero area (collinear or repeated vertices)");
-  const Vec3 unit = normal / area2;
-  double deviation = 0;
-  Vec3 centroid;
-  for (const Vec3& p : v) centroid += p - v[0];
-  centroid = centroid / double(v.size());
-  for (const Vec3& p : v) deviation = std::max(deviation, std::abs(dot(unit, p - v[0] - centroid)));
-  if (deviation > kPlanarityTolerance * extent) {
+// The reals of glass and trans enter the computation (an aperture's transmittance): they must be
+// physical, or the daylight factors come out negative, above the sky's, or NaN. Transmissivities,
+// reflectances and specularities are fractions; glass's refractive index lies in [1, 100] (at
+// n → 0 or ∞ its surface reflectance rounds to 1 and the transmittance to 0/0). The reals of
+// other materials are kept as read: occluders are black. Returns what is wrong, or "".
+std::string material_range_problem(const std::string& type, const std::vector<double>& r) {
+  const auto outside = [](double x, double lo, double hi) { return !(x >= lo && x <= hi); };
+  const auto describe = [](const char* what, double x, const char* range) {
     std::ostringstream msg;
-    msg << "polygon '" << poly.name << "' is not planar: a vertex lies " << deviation
-        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << extent;
+    msg << what << " " << x << " is outside " << range;
+    return msg.str();
+  };
+  if (type == "glass") {
+    for (int c = 0; c < 3; ++c)
+      if (outside(r[c], 0, 1)) return describe("transmissivity", r[c], "[0, 1]");
+    if (r.size() > 3 && outside(r[3], 1, 100)) return describe("refractive index", r[3], "[1, 100]");
+  } else if (type == "trans") {
+    static const char* const kNames[7] = {"red reflectance", "green reflectance", "blue reflectance", "specularity",
+                                          "roughness", "transmissivity", "transmitted specularity"};
+    for (int i = 0; i < 7; ++i)
+      if (i != 4 && outside(r[i], 0, 1)) return describe(kNames[i], r[i], "[0, 1]");
+  }
+  return "";
+}
+
+// Zero-area polygons are rejected (in a scene they are modelling slips, and they have no side to
+// block light with); so are polygons warped beyond kPlanarityTolerance of their extent. Boundaries
+// that cross themselves are found by the exact decomposition (convex_pieces), which knows seams.
+void check_polygon(const Polygon& poly) {
+  const PolygonShape shape = polygon_shape(poly.vertices);
+  if (shape.zero_area)
+    throw input_error(poly.where, "polygon " + printable(poly.name) +
+                                      " has zero area (collinear or repeated vertices, or lobes that cancel)");
+  if (shape.deviation > kPlanarityTolerance * shape.extent) {
+    std::ostringstream msg;
+    msg << "polygon " << printable(poly.name) << " is not planar: a vertex lies " << shape.deviation
+        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << shape.extent;
     throw input_error(poly.where, msg.str());
   }
 }
@@ -63,13 +83,16 @@ void check_polygon(const Polygon& poly) {
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
   TextScanner scan(text, name);
+  // Polygons that had repeated consecutive vertices: counted, and reported once per file.
+  long polygons_with_repeats = 0;
+  SourceLocation first_with_repeats;
   while (!scan.at_end()) {
     const int line = scan.peek_line();
     const SourceLocation where = scan.where(line);
     const Token modifier = scan.next();
     if (modifier.text.front() == '!')
-      throw input_error(where, "commands ('" + std::string(modifier.text) + std::string(scan.rest_of_line()) +
-                                   "') are not supported: run them first and pass their output as a file");
+      throw input_error(where, "commands (" + printable(std::string(modifier.text) + std::string(scan.rest_of_line()), 80) +
+                                   ") are not supported: run them first and pass their output as a file");
     const Token type_tok = scan.next();
     const Token id_tok = scan.next();
     if (type_tok.text.empty() || id_tok.text.empty())
@@ -80,10 +103,10 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     if (type == "alias") {
       // "modifier alias new_id old_id": new_id names the same material as old_id.
       const Token target = scan.next();
-      if (target.text.empty()) throw input_error(where, "alias '" + id + "' lacks the name it refers to");
+      if (target.text.empty()) throw input_error(where, "alias " + printable(id) + " lacks the name it refers to");
       const auto it = content.materials.find(std::string(target.text));
       if (it == content.materials.end())
-        throw input_error(where, "alias '" + id + "' refers to undefined material '" + std::string(target.text) + "'");
+        throw input_error(where, "alias " + printable(id) + " refers to undefined material " + printable(target.text));
       Material m = it->second;
       m.name = id;
       m.where = where;
@@ -95,66 +118,83 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     const long nstr = parse_count(scan.next(), where, "the number of string arguments");
     for (long i = 0; i < nstr; ++i) {
       const Token t = scan.next();
-      if (t.text.empty()) throw input_error(where, "unexpected end of file in the string arguments of '" + id + "'");
+      if (t.text.empty()) throw input_error(where, "unexpected end of file in the string arguments of " + printable(id));
       strings.emplace_back(t.text);
     }
     const long nint = parse_count(scan.next(), where, "the number of integer arguments");
     for (long i = 0; i < nint; ++i) {
       const Token t = scan.next();
-      if (t.text.empty()) throw input_error(where, "unexpected end of file in the integer arguments of '" + id + "'");
+      if (t.text.empty()) throw input_error(where, "unexpected end of file in the integer arguments of " + printable(id));
     }
     const long nreal = parse_count(scan.next(), where, "the number of real arguments");
     std::vector<double> reals;
+    std::vector<int> real_lines;  // for messages about single coordinates
     reals.reserve(std::size_t(std::min<long>(nreal, 1 << 16)));
     for (long i = 0; i < nreal; ++i) {
       const Token t = scan.next();
       if (t.text.empty())
-        throw input_error(where, "unexpected end of file in '" + id + "': " + std::to_string(nreal) +
+        throw input_error(where, "unexpected end of file in " + printable(id) + ": " + std::to_string(nreal) +
                                      " real arguments announced, " + std::to_string(i) + " found");
-      reals.push_back(parse_real(t, scan.where(t.line), "real argument " + std::to_string(i + 1) + " of '" + id + "'"));
+      reals.push_back(parse_real(t, scan.where(t.line), "real argument " + std::to_string(i + 1) + " of " + printable(id)));
+      real_lines.push_back(t.line);
     }
 
     const std::string modifier_name(modifier.text);
     if (modifier_name != "void" && !content.materials.count(modifier_name) &&
         !content.skipped_modifiers.count(modifier_name))
-      throw input_error(where, "undefined modifier '" + modifier_name + "' for '" + id + "'");
+      throw input_error(where, "undefined modifier " + printable(modifier_name) + " for " + printable(id));
 
     if (type == "polygon") {
       if (nreal % 3 != 0)
-        throw input_error(where, "polygon '" + id + "' has " + std::to_string(nreal) +
+        throw input_error(where, "polygon " + printable(id) + " has " + std::to_string(nreal) +
                                      " real arguments, which is not a multiple of 3");
       if (nreal < 9)
-        throw input_error(where, "polygon '" + id + "' has " + std::to_string(nreal / 3) +
+        throw input_error(where, "polygon " + printable(id) + " has " + std::to_string(nreal / 3) +
                                      " vertices; a polygon needs at least 3");
+      for (std::size_t i = 0; i < reals.size(); ++i)
+        if (!(std::abs(reals[i]) <= kMaxCoordinate))
+          throw input_error(scan.where(real_lines[i]), "vertex coordinate " + std::to_string(i + 1) + " of polygon " +
+                                                           printable(id) + " is beyond 1e12 in magnitude: move the "
+                                                           "model's origin nearer (or use larger units)");
       Polygon poly;
       poly.name = id;
       poly.material = std::string(modifier.text);
       poly.where = where;
+      // Exactly repeated consecutive vertices (and a last vertex repeating the first) carry no
+      // geometry and are common in exported models: they are dropped, with one notice per file.
+      // Repeats that are not consecutive stay: they are the seams of holes, or a crossing that
+      // convex_pieces reports.
       for (long i = 0; i < nreal; i += 3) {
         const Vec3 v{reals[i], reals[i + 1], reals[i + 2]};
-        // Exactly repeated consecutive vertices carry no geometry; drop them here.
         if (poly.vertices.empty() || !(poly.vertices.back() == v)) poly.vertices.push_back(v);
       }
       while (poly.vertices.size() > 1 && poly.vertices.front() == poly.vertices.back()) poly.vertices.pop_back();
       if (poly.vertices.size() < 3)
-        throw input_error(where, "polygon '" + id + "' has fewer than 3 distinct vertices");
+        throw input_error(where, "polygon " + printable(id) + " has fewer than 3 distinct vertices");
+      if (long(poly.vertices.size()) != nreal / 3 && polygons_with_repeats++ == 0) first_with_repeats = where;
       check_polygon(poly);
       content.polygons.push_back({std::move(poly), aperture_file});
     } else if (kMaterialTypes.count(type)) {
       if (!material_arity_ok(type, reals.size()))
-        throw input_error(where, type + " material '" + id + "' has " + std::to_string(reals.size()) +
+        throw input_error(where, type + " material " + printable(id) + " has " + std::to_string(reals.size()) +
                                      " real arguments, which is wrong for its type");
+      if (const std::string problem = material_range_problem(type, reals); !problem.empty())
+        throw input_error(where, type + " material " + printable(id) + ": " + problem);
       content.materials[id] = Material{id, type, std::move(strings), std::move(reals), where};
     } else if (kSkyTypes.count(type)) {
       content.skipped_modifiers.insert(id);
-      content.notices.push_back(where.str() + ": skipped " + type + " '" + id +
-                                "' (the sky comes from --sky, not from scene files)");
+      content.notices.push_back(where.str() + ": skipped " + type + " " + printable(id) +
+                                " (the sky comes from --sky, not from scene files)");
     } else {
-      throw input_error(where, "unsupported primitive type '" + type + "' ('" + id +
-                                   "'); daylit reads polygon geometry and the materials plastic, metal, "
+      throw input_error(where, "unsupported primitive type " + printable(type) + " (" + printable(id) +
+                                   "); daylit reads polygon geometry and the materials plastic, metal, "
                                    "trans, glass, mirror, glow, light");
     }
   }
+  if (polygons_with_repeats > 0)
+    content.notices.push_back(first_with_repeats.str() + ": dropped repeated consecutive vertices from " +
+                              std::to_string(polygons_with_repeats) + " polygon" + (polygons_with_repeats > 1 ? "s" : "") +
+                              " of " + name + " (this one first)");
 }
 
 void read_rad_file(const std::string& path, bool aperture_file, RadContent& content) {

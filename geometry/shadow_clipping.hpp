@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -298,7 +300,17 @@ class ShadowClipper {
       if (const std::optional<int> exact = symbolic()) return *exact;
       throw CGAL::Uncertain_conversion_exception("uncertain sign");
     } else {
-      if (const std::optional<int> exact = symbolic()) return *exact;
+      if (const std::optional<int> exact = symbolic()) {
+#ifdef DAYLIT_CHECK_SYMBOLIC
+        // Fuzz builds (fuzz/instrument.cmake): every exact shortcut must give the sign of the
+        // value it stands for, which the rationals know.
+        if (sign_of(value) != *exact) {
+          std::fprintf(stderr, "daylit: symbolic sign %d, exact sign %d\n", *exact, sign_of(value));
+          std::abort();
+        }
+#endif
+        return *exact;
+      }
       return sign_of(value);
     }
   }
@@ -423,7 +435,16 @@ class ShadowClipper {
       if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
       if (L.kind != LineId::Kind::segment) return std::nullopt;
       const int mu = reversed ? -1 : 1;
-      if (x.at) return -sh_ * mu * Signs::orient3(p_in_, *L.a, *L.b, *x.at);
+      if (x.at) {
+        // x − p = t (V − p), t = −h / (N·(V − p)): positive for the projection of a vertex of an
+        // occluder clipped to the cone, but a meeting point of two lines through V
+        // (shared_endpoint) projects a V that may lie behind p, with t < 0 (found by
+        // fuzz_visibility: the rational reference then kept a piece below the horizon).
+        const auto& pv = piece_.vertices;
+        const int t_sign = -sh_ * Signs::normal_dot_diff(pv[0], pv[piece_.base_b], pv[piece_.base_c], *x.at, p_in_);
+        if (t_sign == 0) return std::nullopt;
+        return -sh_ * mu * t_sign * Signs::orient3(p_in_, *L.a, *L.b, *x.at);
+      }
       if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
         return std::nullopt;
       const auto& wv = piece_.vertices;

@@ -4,10 +4,12 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "geometry/input_checks.hpp"
 
 namespace daylit {
 
@@ -73,19 +75,56 @@ class TextScanner {
   int line_ = 1;
 };
 
-// A finite real number, or an error naming the place and the offending text.
+// Input text quoted for a message: bytes other than printable ASCII as \xHH (binary garbage and
+// NUL bytes must not reach the terminal, and what() ends at a NUL), and at most `max` bytes of
+// the input shown, so that a megabyte-long token gives a one-line message.
+inline std::string printable(std::string_view s, std::size_t max = 40) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out = "'";
+  for (std::size_t i = 0; i < s.size() && i < max; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  out += s.size() > max ? "'... (" + std::to_string(s.size()) + " bytes)" : "'";
+  return out;
+}
+
+// A finite real number, or an error naming the place and the offending text. A number too small
+// for a double reads as zero (or a subnormal), as in Radiance; one too large is an error.
 inline double parse_real(const Token& t, const SourceLocation& where, std::string_view what) {
   std::string_view s = t.text;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   double value = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
   if (t.text.empty()) throw input_error(where, "unexpected end of file, expected " + std::string(what));
-  if (ec == std::errc::result_out_of_range)
-    throw input_error(where, "number '" + std::string(t.text) + "' is out of range for " + std::string(what));
+  if (ec == std::errc::result_out_of_range && end == s.data() + s.size()) {
+    // from_chars reports underflow and overflow alike; strtod (on the same, complete, token)
+    // returns ±HUGE_VAL only for overflow.
+    const std::string copy(s);
+    value = std::strtod(copy.c_str(), nullptr);
+    if (std::isinf(value))
+      throw input_error(where, "number " + printable(t.text) + " is out of range for " + std::string(what));
+    ec = std::errc();
+  }
   if (ec != std::errc() || end != s.data() + s.size())
-    throw input_error(where, "expected a number for " + std::string(what) + ", found '" + std::string(t.text) + "'");
+    throw input_error(where, "expected a number for " + std::string(what) + ", found " + printable(t.text));
   if (!std::isfinite(value))
-    throw input_error(where, "non-finite number '" + std::string(t.text) + "' for " + std::string(what));
+    throw input_error(where, "non-finite number " + printable(t.text) + " for " + std::string(what));
+  return value;
+}
+
+// A coordinate: a real number within ±kMaxCoordinate.
+inline double parse_coordinate(const Token& t, const SourceLocation& where, std::string_view what) {
+  const double value = parse_real(t, where, what);
+  if (!(std::abs(value) <= kMaxCoordinate))
+    throw input_error(where, "coordinate " + printable(t.text) + " for " + std::string(what) +
+                                 " is beyond 1e12 in magnitude: move the model's origin nearer (or use larger units)");
   return value;
 }
 
@@ -95,8 +134,8 @@ inline long parse_count(const Token& t, const SourceLocation& where, std::string
   const auto [end, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), value);
   if (t.text.empty()) throw input_error(where, "unexpected end of file, expected " + std::string(what));
   if (ec != std::errc() || end != t.text.data() + t.text.size() || value < 0)
-    throw input_error(where, "expected a non-negative integer for " + std::string(what) + ", found '" +
-                                 std::string(t.text) + "'");
+    throw input_error(where, "expected a non-negative integer for " + std::string(what) + ", found " +
+                                 printable(t.text));
   return value;
 }
 

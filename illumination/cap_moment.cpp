@@ -97,9 +97,10 @@ template <class R>
 class SmallCap {
  public:
   // The cap {L·u ≥ cos s}, s ∈ [0, π/2], at angle w ∈ [0, π] from the pole. Prepares P(k) for
-  // k_lo ≤ k ≤ k_hi and f_m for m ≤ m_f (m_f < 0: none). When every one of them is bounded by
+  // k_lo ≤ k ≤ k_hi and f_m for m ≤ m_f (m_f < 0: none), and their tails if `with_tail` (and they
+  // converge: not with the pole on the rim). When every one of them is bounded by
   // `negligible` (the region far below the pole and n large), zero() says so and nothing is built.
-  SmallCap(R w, R s, int k_lo, int k_hi, int m_f, R negligible) {
+  SmallCap(R w, R s, int k_lo, int k_hi, int m_f, R negligible, bool with_tail) {
     const R pi = pi_of<R>();
     cw_ = r_cos(w), sw_ = r_sin(w), cs_ = r_cos(s), ss_ = r_sin(s);
     const R sin_half = r_sin(s / 2);
@@ -132,7 +133,7 @@ class SmallCap {
     // Tail length: J(i) falls off like i·z_max^i; stop where z_max^T is below u/64 with 10 %
     // to spare for the polynomial factor.
     int tail_length = 0;
-    tail_ok_ = !on_boundary && ln_zmax < 0;
+    tail_ok_ = with_tail && !on_boundary && ln_zmax < 0;
     if (tail_ok_) {
       const R t = R(1.1) * r_log(unit_roundoff<R>() / 64) / ln_zmax + 8;
       const R budget = R(2) * R(k_hi + 2) + 20000;
@@ -282,49 +283,66 @@ Estimate<R> clipped_cap_moment(R omega, R sigma, int n, bool times_cap_axis) {
   const R underflow = R(1e-300) * R(1e-30);  // below every double
   const R negligible =
       big ? R(1e-40) * two_pi * (times_cap_axis ? r_abs(cos_omega) : R(1)) + underflow : underflow;
-  const SmallCap<R> cap(w, s, std::max(k, 0), std::max(k, 0), times_cap_axis ? n + 2 : -1, negligible);
 
-  std::vector<Sum<R>> candidates;  // of P(k)
-  if (k >= 0) {
-    const Sum<R> fw = cap.forward(k);
-    candidates.push_back(big ? Sum<R>{two_pi - fw.value, two_pi + fw.magnitude} : fw);
-    if (!cap.zero() && cap.has_tail()) {
-      const Sum<R> t = cap.tail(k);
-      const R p = cap.pole();
-      candidates.push_back(big ? Sum<R>{two_pi * (1 - p) + t.value, two_pi * (1 - p) + t.magnitude}
-                               : Sum<R>{two_pi * p - t.value, two_pi * p + t.magnitude});
+  // The candidate of least cancellation with the arc integrals of `cap`.
+  auto best_of = [&](const SmallCap<R>& cap) {
+    std::vector<Sum<R>> candidates;  // of P(k)
+    if (k >= 0) {
+      const Sum<R> fw = cap.forward(k);
+      candidates.push_back(big ? Sum<R>{two_pi - fw.value, two_pi + fw.magnitude} : fw);
+      if (!cap.zero() && cap.has_tail()) {
+        const Sum<R> t = cap.tail(k);
+        const R p = cap.pole();
+        candidates.push_back(big ? Sum<R>{two_pi * (1 - p) + t.value, two_pi * (1 - p) + t.magnitude}
+                                 : Sum<R>{two_pi * p - t.value, two_pi * p + t.magnitude});
+      }
     }
-  }
-
-  std::vector<Sum<R>> results;
-  if (!times_cap_axis) {
-    for (const Sum<R>& p : candidates) results.push_back({p.value / R(n + 1), p.magnitude / R(n + 1)});
-  } else {
-    const R rim = sin_sigma * sin_sigma * cap.f(n);
-    if (n == 0) {
-      const R horizon = big ? two_pi - cap.horizon_arc() : cap.horizon_arc();
-      const R t = cos_omega * horizon;
-      results.push_back({(rim + t) / 2, (rim + r_abs(t)) / 2});
+    std::vector<Sum<R>> results;
+    if (!times_cap_axis) {
+      for (const Sum<R>& p : candidates) results.push_back({p.value / R(n + 1), p.magnitude / R(n + 1)});
     } else {
-      for (const Sum<R>& p : candidates)
-        results.push_back({(cos_omega * p.value + rim) / R(n + 2), (r_abs(cos_omega) * p.magnitude + rim) / R(n + 2)});
+      const R rim = sin_sigma * sin_sigma * cap.f(n);
+      if (n == 0) {
+        const R horizon = big ? two_pi - cap.horizon_arc() : cap.horizon_arc();
+        const R t = cos_omega * horizon;
+        results.push_back({(rim + t) / 2, (rim + r_abs(t)) / 2});
+      } else {
+        for (const Sum<R>& p : candidates)
+          results.push_back(
+              {(cos_omega * p.value + rim) / R(n + 2), (r_abs(cos_omega) * p.magnitude + rim) / R(n + 2)});
+      }
+      if (!cap.zero() && cap.has_tail()) {
+        const R pole = big ? 1 - cap.pole() : cap.pole();
+        const R t0 = two_pi * cos_omega * pole, t1 = cap.q2() * cap.tail_f(n), t2 = cap.a() * cap.tail_f(n + 1),
+                t3 = -sin_sigma * sin_sigma * cap.tail_f(n + 2);
+        results.push_back(
+            {(t0 + t1 + t2 + t3) / R(n + 2), (r_abs(t0) + r_abs(t1) + r_abs(t2) + r_abs(t3)) / R(n + 2)});
+      }
     }
-    if (!cap.zero() && cap.has_tail()) {
-      const R pole = big ? 1 - cap.pole() : cap.pole();
-      const R t0 = two_pi * cos_omega * pole, t1 = cap.q2() * cap.tail_f(n), t2 = cap.a() * cap.tail_f(n + 1),
-              t3 = -sin_sigma * sin_sigma * cap.tail_f(n + 2);
-      results.push_back({(t0 + t1 + t2 + t3) / R(n + 2),
-                         (r_abs(t0) + r_abs(t1) + r_abs(t2) + r_abs(t3)) / R(n + 2)});
+    Sum<R> best = results.front();
+    for (const Sum<R>& r : results)
+      if (condition(r) < condition(best)) best = r;
+    return best;
+  };
+
+  // The forward sums alone first (no tail to build); the tails only where those cancel.
+  const int m_f = times_cap_axis ? n + 2 : -1;
+  const SmallCap<R> forward_only(w, s, std::max(k, 0), std::max(k, 0), m_f, negligible, false);
+  Sum<R> best = best_of(forward_only);
+  int length = forward_only.length();
+  if (condition(best) > 4) {
+    const SmallCap<R> cap(w, s, std::max(k, 0), std::max(k, 0), m_f, negligible, true);
+    const Sum<R> with_tail = best_of(cap);
+    if (condition(with_tail) < condition(best)) {
+      best = with_tail;
+      length = cap.length();
     }
   }
-  const Sum<R>* best = &results.front();
-  for (const Sum<R>& r : results)
-    if (condition(r) < condition(*best)) best = &r;
   const R u = unit_roundoff<R>();
-  R error = u * condition(*best) * (16 + 2 * r_sqrt(R(cap.length())));
-  if (!cap.zero() && cap.z_max() < R(0.5))
-    error += u * (r_abs(w) + r_abs(s)) / cap.z_max() * R(std::max(n, 0) + 2);
-  return {best->value, error};
+  R error = u * condition(best) * (16 + 2 * r_sqrt(R(length)));
+  if (!forward_only.zero() && forward_only.z_max() < R(0.5))
+    error += u * (r_abs(w) + r_abs(s)) / forward_only.z_max() * R(std::max(n, 0) + 2);
+  return {best.value, error};
 }
 
 struct Evaluation {
@@ -332,12 +350,12 @@ struct Evaluation {
   double relative_error;
 };
 
-// Long double first; __float128 when the estimate exceeds 1e−16 (a few ulps of the double result).
+// Long double first; __float128 when the estimate exceeds 4e−16 (a few ulps of the double result).
 template <class Angle>
 Evaluation evaluate(Angle&& omega_in, double sigma, int n, bool times_cap_axis) {
   const auto l = clipped_cap_moment<long double>(omega_in((long double)0), sigma, n, times_cap_axis);
 #ifdef DAYLIT_HAS_FLOAT128
-  if (l.relative_error > 1e-16L) {
+  if (l.relative_error > 4e-16L) {
     const auto q = clipped_cap_moment<quad>(omega_in(quad(0)), quad(sigma), n, times_cap_axis);
     return {double(q.value), double(q.relative_error)};
   }
@@ -394,12 +412,14 @@ double one_minus_cos_power(double sigma, int m) {
 
 double clipped_cap_axial_moment(double omega, double half_angle, int n) {
   check_power(n);
-  return clipped_cap(omega, half_angle, n, false).value;
+  if (!(half_angle > 0)) return 0;
+  return clipped_cap(std::clamp(omega, 0.0, M_PI), std::min(half_angle, M_PI), n, false).value;
 }
 
 double clipped_cap_double_axis_moment(double omega, double half_angle, int n) {
   check_power(n);
-  return clipped_cap(omega, half_angle, n, true).value;
+  if (!(half_angle > 0)) return 0;
+  return clipped_cap(std::clamp(omega, 0.0, M_PI), std::min(half_angle, M_PI), n, true).value;
 }
 
 double cap_moment(const Vec3& cap_axis, double half_angle, const std::optional<Vec3>& clip,

@@ -1,5 +1,6 @@
 #include "illumination/snyder.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/error.hpp"
@@ -18,7 +19,15 @@ constexpr LD kPiL = 3.141592653589793238462643383279502884L;
 // π as a double and the rest: π − ω to 107 bits for ω near π.
 constexpr double kPiHi = 3.141592653589793116;
 constexpr double kPiLo = 1.2246467991473532e-16;
+// π as a long double (3.14159265358979323851…) and the rest, for the same in long double.
+constexpr LD kPiLoL = -5.016557612668332023557e-20L;
 constexpr LD kEpsL = 0x1p-64L;
+
+// π − x and π/2 − x with π to 128 bits: exact to rounding where they are small (Sterbenz).
+LD pi_minus(LD x) { return (kPiL - x) + kPiLoL; }
+LD half_pi_minus(LD x) { return (kPiL / 2 - x) + kPiLoL / 2; }
+
+double clamp_angle(double omega) { return std::clamp(omega, 0.0, kPi); }
 
 // x − sin x for x ∈ [0, π]: its Taylor series below 2 (terms fall by x²/20 ≤ 0.2 each, no
 // cancellation), directly above (x − sin x ≥ 1.09 there, cancellation ≤ 2×).
@@ -82,7 +91,7 @@ LD sine_power_low(int n, LD y) {
     }
     return std::pow(s, LD(n + 1)) * c / LD(n + 1) * total;
   }
-  return sine_power_half(n) - cosine_power_integral(n, kPiL / 2 - y);
+  return sine_power_half(n) - cosine_power_integral(n, half_pi_minus(y));
 }
 
 // Value and derivative of I_hemi_sub at the knots of Snyder's Hermite fillet, evaluated on
@@ -102,6 +111,7 @@ double I_hemi_const(double omega) noexcept {
 }
 
 double I_hemi_cos(double omega) noexcept {
+  omega = clamp_angle(omega);
   if (omega <= kPi / 2) {
     const double s = std::sin(omega), c = std::cos(omega);
     return 2 / (3 * kPi) * (s * s * s + c * ((kPiHi - omega) + kPiLo) + s * c * c);
@@ -120,6 +130,8 @@ double I_hemi_overcast(double omega) noexcept { return I_hemi_sum(omega, 1.0 / 3
 
 double I_hemi_sub(double omega, double sigma) {
   if (!(sigma > 0)) return 0;
+  omega = clamp_angle(omega);
+  sigma = std::min(sigma, kPi);
   if (sigma > kPi / 2) return clipped_cap_axial_moment(omega, sigma, 1) / kPi;
   const LD w = omega, s = sigma;
   const LD cw = std::cos(w), cs = std::cos(s), ss = std::sin(s);
@@ -138,6 +150,7 @@ double I_hemi_sub(double omega, double sigma) {
 
 double I_hemi_sub_hermite(double omega, double sigma) {
   if (!(sigma > 0)) return 0;
+  omega = clamp_angle(omega);
   if (sigma > kPi / 2) return I_hemi_sub(omega, sigma);
   const double ss = std::sin(sigma), cs = std::cos(sigma);
   const double x0 = kPi / 2 - sigma, x1 = kPi / 2, x2 = kPi / 2 + sigma;
@@ -157,17 +170,20 @@ double I_poly(const SphericalRegion& region, const Vec3& normal) {
 
 double sine_power_integral(int n, double x) noexcept {
   if (!(x > 0)) return 0;
+  x = clamp_angle(x);
   if (x <= kPi / 2) return double(sine_power_low(n, x));
-  return double(2 * sine_power_half(n) - sine_power_low(n, kPiL - LD(x)));
+  return double(2 * sine_power_half(n) - sine_power_low(n, pi_minus(x)));
 }
 
 double I_hemi_const_phong(double omega, int n) noexcept {
+  omega = clamp_angle(omega);
   const LD half = sine_power_half(n);  // S(n, π) = 2 half
-  if (omega >= kPi / 2) return double(sine_power_low(n, kPiL - LD(omega)) / (2 * half));
+  if (omega >= kPi / 2) return double(sine_power_low(n, pi_minus(omega)) / (2 * half));
   return double(1 - sine_power_low(n, omega) / (2 * half));
 }
 
 double I_hemi_cos_phong(double omega, int n) noexcept {
+  omega = clamp_angle(omega);
   const int m = n + 1;
   const LD half = sine_power_half(m);  // S(n + 1, π) = 2 half
   const LD factor = LD(n + 1) / (LD(n + 2) * 2 * half);
@@ -175,7 +191,7 @@ double I_hemi_cos_phong(double omega, int n) noexcept {
     const LD s = std::sin(LD(omega)), c = std::cos(LD(omega));
     return double(factor * (std::pow(s, LD(n + 2)) / LD(n + 1) + c * (2 * half - sine_power_low(m, omega))));
   }
-  const LD y = kPiL - LD(omega);
+  const LD y = pi_minus(omega);
   const LD s = std::sin(y), c = std::cos(y), s2 = s * s, c2 = c * c;
   LD bracket;
   if (use_series(m, s2, c2)) {

@@ -9,6 +9,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgeographiclib-dev                 # site placement: WGS84, UTM, local east-north-up frames
   catch2                               # tests (v2)
+  time                                 # tests: peak memory of runs over millions of lines
+  clang-14 libclang-rt-14-dev llvm-14  # CI: libFuzzer targets (fuzz/), its runtime, llvm-symbolizer
 )
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Bad input to `daylit df`: a clear message naming the file (and line), a non-zero exit status, and
-# no output file left behind.
+# no output file left behind; never a crash, a sanitizer report or a hang. Then what must work:
+# repeated vertices and sensors on occluders; millions of lines in bounded memory; and `daylit
+# eval` on garbage (answered line by line, errors naming file:line). The reader-level matrix is
+# tests/test_bad_input.cpp.
 set -u
 daylit=$1
 work=$(mktemp -d)
@@ -13,13 +16,22 @@ void polygon window 0 0 12 0 0 1  2 0 1  2 0 2  0 0 2
 RAD
 printf '1 2 0.85 0 0 1\n' > grid.pts
 
+# A clean failure: a status of 1 (daylit's errors) or CLI11's (100-110) — not 0, not a signal
+# (128+), not the timeout's 124 — and no sanitizer report.
+clean_failure_status() {  # name, status
+  if [ "$2" -eq 0 ] || [ "$2" -eq 124 ] || [ "$2" -ge 128 ] || grep -q -e "Sanitizer" -e "runtime error" stderr.txt; then
+    echo "FAIL $1: exit status $2"; head -n 5 stderr.txt; failures=$((failures + 1))
+  fi
+}
+
 expect_failure() {  # name, expected text in stderr, arguments...
   local name=$1 expected=$2
   shift 2
   rm -f out.csv summary.json plan.png
-  "$daylit" df "$@" --summary summary.json --image plan.png --quiet 2> stderr.txt
+  timeout 120 "$daylit" df "$@" --summary summary.json --image plan.png --quiet 2> stderr.txt
   local status=$?
-  if [ "$status" -eq 0 ]; then echo "FAIL $name: exit status 0"; failures=$((failures + 1)); fi
+  clean_failure_status "$name" "$status"
+  if LC_ALL=C grep -q '[^[:print:][:space:]]' stderr.txt; then echo "FAIL $name: unprintable bytes in stderr"; failures=$((failures + 1)); fi
   if ! grep -q -- "$expected" stderr.txt; then echo "FAIL $name: stderr lacks '$expected':"; cat stderr.txt; failures=$((failures + 1)); fi
   if ls out.csv summary.json plan.png .*partial* 2>/dev/null | grep -q .; then echo "FAIL $name: output left behind"; failures=$((failures + 1)); fi
   echo "ok   $name: $(head -n 1 stderr.txt)"
@@ -41,11 +53,121 @@ printf 'void polygon bow 0 0 12 0 0 1 2 0 2.5 2 0 1 0 0 2\n' > bowtie.rad
 expect_failure "self-intersecting polygon" "bowtie.rad:1" --apertures bowtie.rad --grid grid.pts --out out.csv
 expect_failure "output directory missing" "no-such-dir" --apertures window.rad --grid grid.pts --out no-such-dir/x.csv
 
+# Truncated files, binary garbage (deterministic bytes, NUL included), huge numbers, NaN and Inf,
+# warped and degenerate polygons.
+printf 'void polygon w\n0\n0\n12\n0 0 1\n2 0 1\n2 0' > truncated.rad
+expect_failure "file truncated inside a primitive" "truncated.rad:1:" --apertures truncated.rad --grid grid.pts --out out.csv
+printf '1 2 0.85 0 0 1\n1 2 0.85 0 0' > truncated.pts
+expect_failure "grid truncated inside a line" "truncated.pts:2:" --apertures window.rad --grid truncated.pts --out out.csv
+perl -e 'srand(7); print map { chr(int(rand(256))) } 1 .. 4096' > garbage.rad
+expect_failure "binary garbage scene" "garbage.rad:[0-9]*:" --scene garbage.rad --apertures window.rad --grid grid.pts --out out.csv
+perl -e 'srand(8); print map { chr(int(rand(256))) } 1 .. 4096' > garbage.pts
+expect_failure "binary garbage grid" "garbage.pts:[0-9]*:" --apertures window.rad --grid garbage.pts --out out.csv
+printf '1 2 0.85 0 0 1\n1 2 0.85 0 0 1\0 3\n' > nul.pts
+expect_failure "NUL byte in a grid" "nul.pts:2:.*x00" --apertures window.rad --grid nul.pts --out out.csv
+printf 'void polygon w 0 0 12\n0 0 1\n2 0 1\n2 0 2\n0 0 1e308\n' > huge.rad
+expect_failure "coordinate beyond 1e12" "huge.rad:5:.*beyond 1e12" --apertures huge.rad --grid grid.pts --out out.csv
+printf 'void polygon w 0 0 12 0 0 1 2 0 1 2 0 2 0 0 1e400\n' > overflow.rad
+expect_failure "number beyond double" "overflow.rad:1:.*out of range" --apertures overflow.rad --grid grid.pts --out out.csv
+printf 'void glass g 0 0 3 1e308 1e308 1e308\ng polygon w 0 0 12 0 0 1 2 0 1 2 0 2 0 0 2\n' > glass.rad
+expect_failure "glass transmissivity 1e308" "glass.rad:1:.*transmissivity" --apertures glass.rad --grid grid.pts --out out.csv
+printf '1 2 0.85 0 0 1\n1e308 2 0.85 0 0 1\n' > huge.pts
+expect_failure "sensor beyond 1e12" "huge.pts:2:.*beyond 1e12" --apertures window.rad --grid huge.pts --out out.csv
+printf '1 2 0.85 0 0 -Infinity\n' > ninf.pts
+expect_failure "-Infinity direction" "ninf.pts:1:.*non-finite" --apertures window.rad --grid ninf.pts --out out.csv
+printf 'void polygon warp 0 0 12 0 0 1 2 0 1 2 0.01 2 0 0 2\n' > warp.rad
+expect_failure "non-planar polygon (beyond 1e-4 of its extent)" "warp.rad:1:.*not planar" --apertures warp.rad --grid grid.pts --out out.csv
+printf 'void polygon line 0 0 9 0 0 1 1 0 1 3 0 1\n' > line.rad
+expect_failure "zero-area polygon" "line.rad:1:.*zero area" --scene line.rad --apertures window.rad --grid grid.pts --out out.csv
+printf 'void polygon star 0 0 15 0 0 0 2 0 3 4 0 0 0 0 2 4 0 2\n' > star.rad
+expect_failure "self-intersecting occluder" "star.rad:1:" --scene star.rad --apertures window.rad --grid grid.pts --out out.csv
+
 # And a good run writes all three.
 "$daylit" df --apertures window.rad --grid grid.pts --out out.csv --summary summary.json --image plan.png --quiet
 if [ $? -ne 0 ] || [ ! -s out.csv ] || [ ! -s summary.json ] || [ ! -s plan.png ]; then
   echo "FAIL good run"; failures=$((failures + 1))
 fi
 if grep -qi nan out.csv; then echo "FAIL good run printed NaN"; failures=$((failures + 1)); fi
+
+# Repeated consecutive vertices are dropped with a notice, and change nothing; a sensor on an
+# occluder polygon (a table top, in its plane) sees what it would without it.
+printf 'void polygon window 0 0 21 0 0 1  2 0 1  2 0 1  2 0 2  0 0 2  0 0 2  0 0 1\n' > repeats.rad
+"$daylit" df --apertures repeats.rad --grid grid.pts --out repeats.csv 2> stderr.txt
+if ! grep -q "notice: repeats.rad:1: dropped repeated consecutive vertices" stderr.txt; then
+  echo "FAIL repeated vertices: no notice"; cat stderr.txt; failures=$((failures + 1))
+fi
+"$daylit" df --apertures window.rad --grid grid.pts --out plain.csv --quiet
+if [ "$(cut -d, -f2- repeats.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL repeated vertices change the result"; failures=$((failures + 1)); fi
+printf 'void polygon table 0 0 12 0 0.5 0.85  2 0.5 0.85  2 3 0.85  0 3 0.85\n' > table.rad
+"$daylit" df --scene table.rad --apertures window.rad --grid grid.pts --out table.csv --quiet
+if [ "$(cut -d, -f2- table.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL sensor on a table top"; failures=$((failures + 1)); fi
+echo "ok   repeated vertices and sensors on occluders"
+
+# Millions of lines. Memory must stay proportional to the sensors (the grid is streamed, not
+# held as text): below 200 bytes per sensor plus 150 MB (measured: 147 MB for 2 million sensors;
+# ASan's quarantine is capped so that the bound holds under the sanitizers too). A file that is
+# not a grid fails at its first line without being read to the end; a bad last line is named.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=16"
+lines=2000000
+awk -v n=$lines 'BEGIN { for (i = 0; i < n; ++i) printf "%d.%d %d.%d 0.85 0 0 -1\n", i % 1000, i % 7, int(i / 1000) % 1000, i % 11 }' > big.pts
+if [ -x /usr/bin/time ]; then
+  /usr/bin/time -f '%M' -o rss.txt timeout 300 "$daylit" df --apertures window.rad --grid big.pts --quiet > big.csv 2> stderr.txt
+  status=$?
+  rss_kb=$(tail -n 1 rss.txt)
+  bound_kb=$(( (200 * lines) / 1024 + 150 * 1024 ))
+  rows=$(wc -l < big.csv)
+  if [ "$status" -ne 0 ] || [ "$rows" -ne $((lines + 1)) ]; then echo "FAIL 2 million sensors: status $status, $rows rows"; failures=$((failures + 1)); fi
+  if [ "$rss_kb" -gt "$bound_kb" ]; then echo "FAIL 2 million sensors: peak RSS $rss_kb kB > $bound_kb kB"; failures=$((failures + 1)); fi
+  echo "ok   2 million sensors: peak RSS $rss_kb kB (bound $bound_kb kB)"
+else
+  echo "skip 2 million sensors: /usr/bin/time is missing (scripts/setup.sh installs it)"
+fi
+rm -f big.csv
+perl -e 'srand(9); print map { chr(int(rand(256))) } 1 .. 64' > huge_garbage.pts
+cat big.pts >> huge_garbage.pts
+start=$(date +%s)
+expect_failure "2 million lines of garbage fail at the first" "huge_garbage.pts:[0-9]:" --apertures window.rad --grid huge_garbage.pts --out out.csv
+if [ $(( $(date +%s) - start )) -gt 10 ]; then echo "FAIL garbage grid: not fast"; failures=$((failures + 1)); fi
+printf '1 2 0.85 0 0 x\n' >> big.pts
+expect_failure "bad line 2000001 of a grid" "big.pts:2000001:" --apertures window.rad --grid big.pts --out out.csv
+awk -v n=$lines 'BEGIN { for (i = 1; i < n; ++i) print "# comment line " i; print "void sphere ball 0 0 4 0 0 0 1" }' > big.rad
+expect_failure "unsupported primitive at line 2000000" "big.rad:2000000:.*sphere" --scene big.rad --apertures window.rad --grid grid.pts --out out.csv
+rm -f big.pts big.rad huge_garbage.pts
+
+# `daylit eval` on garbage: every line answered in order (one line each, the run goes on),
+# errors about the text naming file and line; a line over 1 MiB is refused without being kept;
+# 2 million lines in bounded memory.
+query='{"id":1,"quantity":"moment","region":{"polygon":[[0,0,1],[1,0,1],[1,1,1],[0,1,1]],"origin":[0,0,0]}}'
+{
+  echo "$query"
+  perl -e 'srand(10); print map { chr } grep { $_ != 10 } map { int(rand(256)) } 1 .. 200'; echo
+  printf '{"id":2,"quantity":"moment","region":{"polygon":[[0,0,1e400],[1,0,1],[1,1,1]],"origin":[0,0,0]}}\n'
+  printf '{"id":3,"quantity":5}\n'
+  printf '{"id":4,"x":"\xff\xfe"}\n'
+  perl -e 'print "[" x 100000, "]" x 100000, "\n"'
+  perl -e 'print "{\"id\":5,\"pad\":\"", "x" x 1100000, "\"}\n"'
+  printf '%s' "$query"
+} > garbage.jsonl
+timeout 60 "$daylit" eval garbage.jsonl > answers.jsonl 2> stderr.txt
+status=$?
+if [ "$status" -ne 0 ] || grep -q -e "Sanitizer" -e "runtime error" stderr.txt; then echo "FAIL eval garbage: status $status"; cat stderr.txt; failures=$((failures + 1)); fi
+answers=$(wc -l < answers.jsonl)
+if [ "$answers" -lt 8 ]; then echo "FAIL eval garbage: $answers answers"; failures=$((failures + 1)); fi
+for expected in '"value":0.52359877559829' 'garbage.jsonl:2: invalid JSON' 'garbage.jsonl:3: invalid JSON.*1e400' \
+                 '"id":3' 'garbage.jsonl:5: invalid JSON' 'garbage.jsonl:6: invalid query.*nested' 'garbage.jsonl:7: line longer'; do
+  if ! grep -q -- "$expected" answers.jsonl; then echo "FAIL eval garbage: no answer matching $expected"; failures=$((failures + 1)); fi
+done
+if [ "$(tail -n 1 answers.jsonl | grep -c '"value"')" -ne 1 ]; then echo "FAIL eval garbage: the last query was not answered"; failures=$((failures + 1)); fi
+echo "ok   eval garbage: $answers answers"
+awk -v n=$lines -v q="$query" 'BEGIN { for (i = 0; i < n; ++i) print (i % 10000 == 0 ? q : "") }' > big.jsonl
+if [ -x /usr/bin/time ]; then
+  /usr/bin/time -f '%M' -o rss.txt timeout 300 "$daylit" eval big.jsonl > answers.jsonl 2> stderr.txt
+  status=$?
+  rss_kb=$(tail -n 1 rss.txt)
+  if [ "$status" -ne 0 ] || [ "$(wc -l < answers.jsonl)" -ne $((lines / 10000)) ]; then echo "FAIL eval 2 million lines: status $status"; failures=$((failures + 1)); fi
+  if [ "$rss_kb" -gt $((150 * 1024)) ]; then echo "FAIL eval 2 million lines: peak RSS $rss_kb kB"; failures=$((failures + 1)); fi
+  echo "ok   eval 2 million lines: peak RSS $rss_kb kB"
+fi
+rm -f big.jsonl answers.jsonl
 echo "$failures failures"
 [ "$failures" -eq 0 ]

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
+# Then `bench scenes --quick` and `bench stiff --quick` (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -49,6 +50,62 @@ edges=$out/kernels_cost_per_edge.csv
 [ "$(head -n 1 "$edges")" = "function,edges,order,time_per_eval_s,ns_per_edge,ns_per_edge_per_order,precision" ] ||
   fail "header of $edges"
 [ "$(tail -n +2 "$edges" | wc -l)" -ge 9 ] || fail "fewer than 9 cost-per-edge rows"
+
+# `daylit bench scenes --quick`: every method on both samples; exact is the reference (zero error by
+# construction), float and Monte Carlo errors are finite, Monte Carlo's falls as N grows (the
+# normalised RMS error: the relative error of sensors that see a sliver of sky stays near 1 until
+# N is far larger), the cubature reaches its tolerance; scaling rows and exponents for every
+# dimension and mode.
+start=$SECONDS
+"$daylit" bench scenes --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench scenes: exit status $?"
+echo "bench scenes --quick: $((SECONDS - start)) s"
+for f in scenes_error_vs_time.csv scenes_error_vs_time.png scenes_scaling.csv scenes_scaling.png scenes_scaling_fit.csv scenes_pairs.csv; do
+  [ -s "$out/$f" ] || fail "$f missing or empty"
+done
+[ "$(head -c 8 "$out/scenes_error_vs_time.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "scenes plot not a PNG"
+csv=$out/scenes_error_vs_time.csv
+expected='sample,method,parameter,sensors,cpu_time_per_sensor_s,rms_relative_error,max_relative_error,normalised_rms_error,max_abs_error_percent,sensors_with_sky,zero_sky_sensors_nonzero,failures,work_per_sensor,wall_time_per_sensor_s,threads'
+[ "$(head -n 1 "$csv")" = "$expected" ] || fail "header of $csv: $(head -n 1 "$csv")"
+finite='^[0-9.]+(e[-+][0-9]+)?$'
+report=$(awk -F, -v finite="$finite" 'NR > 1 {
+    rows[$1 "," $2]++
+    if (!($5 > 0)) print "no time for " $1 " " $2 " " $3
+    if ($2 == "exact" && ($6 != 0 || $7 != 0 || $9 != 0)) print "exact is not its own reference in " $1 ": " $6
+    if ($2 != "exact" && ($6 !~ finite || $8 !~ finite)) print "non-finite error for " $1 " " $2 " " $3 ": " $6 " " $8
+    if ($2 == "float" && !($6 < 1e-6)) print "float geometry off by " $6 " in " $1
+    if ($2 == "monte_carlo") { mc[$1 "," $3] = $8; if ($3 + 0 > nmax) nmax = $3 + 0 }
+    if ($2 == "cubature") { if (!(($1) in tightest) || $3 + 0 < tightest[$1]) { tightest[$1] = $3 + 0; cub[$1] = $6 } }
+    if (!($10 > 0)) print "no sensor sees sky in " $1 " " $2
+  }
+  END {
+    split("office hall", samples, " ")
+    for (i in samples) {
+      s = samples[i]
+      split("exact float monte_carlo cubature", methods, " ")
+      for (m in methods) if (!rows[s "," methods[m]]) print "no " methods[m] " rows for " s
+      if (!(mc[s ",16"] != "" && mc[s "," nmax] < mc[s ",16"] / 5)) print "Monte Carlo error does not fall with N in " s ": " mc[s ",16"] " -> " mc[s "," nmax]
+      if (!(cub[s] < 100 * tightest[s])) print "cubature misses its tolerance " tightest[s] " in " s ": " cub[s]
+    }
+  }' "$csv")
+[ -z "$report" ] || fail "$report"
+scaling=$out/scenes_scaling.csv
+[ "$(head -n 1 "$scaling" | cut -d, -f1-8)" = "dimension,parameter,fit_x,mode,sensors,threads,cpu_s,wall_s" ] || fail "header of $scaling"
+[ "$(awk -F, 'NR > 1 && $7 > 0 { seen[$1 "," $4] = 1 } END { n = 0; for (k in seen) n++; print n }' "$scaling")" = 8 ] ||
+  fail "scaling: not every dimension and mode has timed rows"
+[ "$(awk -F, -v finite='^-?[0-9.]+$' 'NR > 1 && $3 ~ finite' "$out/scenes_scaling_fit.csv" | wc -l)" -eq 8 ] ||
+  fail "scaling: not 8 fitted exponents"
+[ "$(awk -F, 'NR > 1 && $4 > 0' "$out/scenes_pairs.csv" | wc -l)" -ge 2 ] || fail "pairs: fewer than 2 grids counted"
+
+# `daylit bench stiff --quick`: one row per case, and the exact path within each case's tolerance
+# of its independent reference (float is reported, not checked: it is allowed to fail).
+start=$SECONDS
+"$daylit" bench stiff --quick --quiet --out "$out" || fail "bench stiff: exit status $?"
+echo "bench stiff --quick: $((SECONDS - start)) s"
+stiff=$out/stiff.csv
+[ "$(head -n 1 "$stiff" | cut -d, -f1-6)" = "case,reference,exact,float,exact_rel_error,float_rel_error" ] || fail "header of $stiff"
+[ "$(tail -n +2 "$stiff" | wc -l)" -ge 20 ] || fail "fewer than 20 stiff cases"
+report=$(awk -F, 'NR > 1 && !($5 <= $8) { print "exact off by " $5 " (tolerance " $8 ") in " $1 }' "$stiff")
+[ -z "$report" ] || fail "$report"
 
 echo "$failures failures"
 [ "$failures" -eq 0 ]

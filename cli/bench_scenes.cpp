@@ -1,0 +1,692 @@
+// `daylit bench scenes`: on the bundled samples (office, hall), the sky component by exact geometry,
+// float geometry, Monte Carlo ray casting and adaptive cubature over the exact visible region, each
+// timed per sensor on one core and compared with the exact closed form; then how run time grows
+// with the number of sensors, occluders, apertures and polygon edges (DESIGN.md §6).
+//
+// Errors: the exact path is the reference (its error is zero by construction; the tests hold it
+// to analytic answers and to an all-rational reference). Per sensor, the relative error
+// |SC − SC_exact|/SC_exact where SC_exact > 0; over a set of sensors its RMS and maximum, the
+// normalised RMS error √mean((SC − SC_exact)²)/√mean(SC_exact²), the largest absolute error
+// (percentage points), and how many sensors that see no sky at all got a non-zero value.
+//
+// Timing (one core, serial loops): exact and float on the sample's whole grid (every 16th sensor
+// with --quick), interleaved, best of 2 runs; Monte Carlo and cubature on a subset of sensors
+// spread over the grid (200, or 12 with --quick), one run each. Each is timed by the CPU time of
+// its thread (plotted) and by the wall clock: on a shared machine the first is what the work
+// costs, the second what it took.
+//
+// Scaling (all cores, office): random sensors on the office floor (1,000 … 100,000); k random
+// boxes added in the street (occluders); the window split into k panes (apertures); the window
+// replaced by a regular k-gon inscribed in the opening (edges), these three on every 8th sensor of
+// the office grid. Timed by CPU time over all threads (and wall time); the exponent is the
+// least-squares slope of log CPU time against log count.
+//
+// Files: scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv,
+// scenes_pairs.csv (what the visibility routine left out, per grid).
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "cli/bench_suites.hpp"
+#include "cli/plot.hpp"
+#include "cli/progress_bar.hpp"
+#include "cli/sky_baselines.hpp"
+#include "cli/staged_output.hpp"
+#include "geometry/error.hpp"
+#include "sky/sky_component.hpp"
+
+namespace daylit::cli {
+
+namespace {
+
+using bench::clock_type;
+using bench::process_cpu_seconds;
+using bench::seconds_since;
+using bench::thread_cpu_seconds;
+
+struct ScenesSettings {
+  std::size_t error_sensors;   // per sample, spread over the grid, for Monte Carlo and cubature
+  std::size_t timing_stride;   // exact and float on every k-th sensor of the grid
+  int timing_runs;             // best of
+  std::vector<long> samples;   // Monte Carlo rays per sensor
+  std::vector<double> tolerances;  // cubature, relative
+  std::vector<std::size_t> sensor_counts;
+  std::vector<int> boxes, panes, edges;
+  std::size_t scaling_stride;  // the office grid's sensors used for the geometry scalings
+  int scaling_runs;            // best of, as long as the runs so far took less than 2 s
+};
+
+ScenesSettings settings_for(bool quick) {
+  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1};
+  return {200,
+          1,
+          2,
+          {16, 64, 256, 1024, 4096, 16384, 65536},
+          {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12},
+          {1000, 3000, 10000, 30000, 100000},
+          {0, 1, 2, 4, 8, 16, 32, 64, 128},
+          {1, 2, 4, 8, 16, 32, 64},
+          {4, 8, 16, 32, 64, 128},
+          8,
+          3};
+}
+
+struct Sample {
+  std::string name;
+  Scene scene;
+  SensorGrid grid;
+};
+
+Sample load_sample(const std::filesystem::path& dir, const std::string& name) {
+  const std::filesystem::path base = dir / name;
+  if (!std::filesystem::exists(base / "scene.rad"))
+    throw Error((base / "scene.rad").string() + ": not found; give the folder of the bundled samples with --samples DIR");
+  Sample s{name, load_scene({(base / "scene.rad").string()}, {(base / "apertures.rad").string()}),
+           read_sensor_grid((base / "grid.pts").string())};
+  return s;
+}
+
+SensorGrid every_kth(const SensorGrid& grid, std::size_t k) {
+  SensorGrid out{grid.name, grid.path, {}};
+  for (std::size_t i = 0; i < grid.sensors.size(); i += k) out.sensors.push_back(grid.sensors[i]);
+  return out;
+}
+
+// About `count` sensors spread over the grid's plan: the bounding rectangle of the sensors cut
+// into nx × ny cells of about equal sides (nx·ny ≈ count), and the sensor nearest each cell's
+// centre (a stride through the file would alias with its rows). Order as in the grid.
+SensorGrid spread(const SensorGrid& grid, std::size_t count) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Sensor& s : grid.sensors) {
+    x0 = std::min(x0, s.position.x), x1 = std::max(x1, s.position.x);
+    y0 = std::min(y0, s.position.y), y1 = std::max(y1, s.position.y);
+  }
+  const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
+  const auto nx = std::size_t(std::max(1.0, std::round(std::sqrt(double(count) * w / h))));
+  const std::size_t ny = std::max<std::size_t>(1, (count + nx / 2) / nx);
+  std::vector<std::size_t> picked;
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      const double cx = x0 + w * (double(i) + 0.5) / double(nx), cy = y0 + h * (double(j) + 0.5) / double(ny);
+      std::size_t best = 0;
+      double best_d = 1e300;
+      for (std::size_t k = 0; k < grid.sensors.size(); ++k) {
+        const double dx = grid.sensors[k].position.x - cx, dy = grid.sensors[k].position.y - cy, d = dx * dx + dy * dy;
+        if (d < best_d) best_d = d, best = k;
+      }
+      picked.push_back(best);
+    }
+  std::sort(picked.begin(), picked.end());
+  picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
+  SensorGrid out{grid.name, grid.path, {}};
+  for (const std::size_t k : picked) out.sensors.push_back(grid.sensors[k]);
+  return out;
+}
+
+// ── Errors ──────────────────────────────────────────────────────────────────────────────────
+
+struct ErrorStats {
+  std::size_t sensors = 0, with_sky = 0, zero_sky_nonzero = 0, failures = 0;
+  double rms_relative = 0, max_relative = 0, normalised_rms = 0, max_abs = 0;
+};
+
+// NaN values are sensors where the method failed (float geometry can give up); they are counted
+// and left out of the statistics.
+ErrorStats error_stats(const std::vector<double>& value, const std::vector<double>& exact) {
+  ErrorStats s;
+  s.sensors = value.size();
+  double rel2 = 0, abs2 = 0, ref2 = 0;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    if (std::isnan(value[i])) {
+      ++s.failures;
+      continue;
+    }
+    const double e = std::abs(value[i] - exact[i]);
+    abs2 += e * e;
+    ref2 += exact[i] * exact[i];
+    s.max_abs = std::max(s.max_abs, e);
+    if (exact[i] > 0) {
+      ++s.with_sky;
+      const double r = e / exact[i];
+      rel2 += r * r;
+      s.max_relative = std::max(s.max_relative, r);
+    } else if (value[i] != 0) {
+      ++s.zero_sky_nonzero;
+    }
+  }
+  s.rms_relative = s.with_sky ? std::sqrt(rel2 / double(s.with_sky)) : 0;
+  s.normalised_rms = ref2 > 0 ? std::sqrt(abs2 / ref2) : 0;
+  return s;
+}
+
+struct ErrorRow {
+  std::string sample, method, parameter;
+  double time_per_sensor_s;  // CPU time of the one thread that ran it
+  double wall_per_sensor_s;
+  double work_per_sensor;  // rays (Monte Carlo), integrand evaluations (cubature), pairs (geometry)
+  ErrorStats errors;
+};
+
+// ── One core: exact, float, Monte Carlo, cubature on a sample ───────────────────────────────
+
+struct SerialRun {
+  std::vector<double> sc;
+  VisibilityCounters counters;
+  double seconds = 0, cpu_seconds = 0;  // wall, and this thread's CPU time
+};
+
+SerialRun run_serial(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid) {
+  SerialRun r;
+  r.sc.resize(grid.sensors.size());
+  const auto t0 = clock_type::now();
+  const double c0 = thread_cpu_seconds();
+  for (std::size_t i = 0; i < grid.sensors.size(); ++i) {
+    try {
+      r.sc[i] = sky_component_percent(engine, scene, grid.sensors[i], SkyModel::cie_overcast, r.counters);
+    } catch (const Error&) {
+      if (engine.mode() != GeometryMode::floating) throw;
+      r.sc[i] = std::nan("");  // the float path gave up at this sensor
+    }
+  }
+  r.seconds = seconds_since(t0);
+  r.cpu_seconds = thread_cpu_seconds() - c0;
+  return r;
+}
+
+struct PairsRow {
+  std::string sample, grid;
+  std::size_t sensors;
+  VisibilityCounters counters;
+};
+
+struct SampleResult {
+  std::vector<ErrorRow> rows;
+  PairsRow pairs;
+  double exact_s_per_sensor, float_s_per_sensor;  // CPU time
+};
+
+SampleResult measure_sample(const Sample& s, const ScenesSettings& settings, bench::StatusLine& status) {
+  SampleResult out;
+  const std::string prefix = "bench scenes: " + s.name + ": ";
+  status.show(prefix + "building the visibility structures");
+  const VisibilityEngine exact_engine(s.scene, GeometryMode::exact), float_engine(s.scene, GeometryMode::floating);
+  const SensorGrid timing = every_kth(s.grid, settings.timing_stride);
+
+  // Exact and float, interleaved so that the machine's load hits both alike; best of the runs.
+  SerialRun exact, floating;
+  exact.cpu_seconds = floating.cpu_seconds = 1e300;
+  for (int run = 0; run < settings.timing_runs; ++run) {
+    status.show(prefix + fmt::format("exact and float geometry, {} sensors, run {}/{}", timing.sensors.size(), run + 1,
+                                     settings.timing_runs));
+    SerialRun e = run_serial(exact_engine, s.scene, timing), f = run_serial(float_engine, s.scene, timing);
+    if (e.cpu_seconds < exact.cpu_seconds) exact = std::move(e);
+    if (f.cpu_seconds < floating.cpu_seconds) floating = std::move(f);
+  }
+  const double n_timing = double(timing.sensors.size());
+  out.exact_s_per_sensor = exact.cpu_seconds / n_timing;
+  out.float_s_per_sensor = floating.cpu_seconds / n_timing;
+  out.pairs = {s.name, timing.sensors.size() == s.grid.sensors.size() ? "grid.pts" : fmt::format("grid.pts, every {}th", settings.timing_stride),
+               timing.sensors.size(), exact.counters};
+  const double pairs_per_sensor = double(exact.counters.pairs) / n_timing;
+  out.rows.push_back({s.name, "exact", "", out.exact_s_per_sensor, exact.seconds / n_timing, pairs_per_sensor,
+                      error_stats(exact.sc, exact.sc)});
+  out.rows.push_back({s.name, "float", "", out.float_s_per_sensor, floating.seconds / n_timing, pairs_per_sensor,
+                      error_stats(floating.sc, exact.sc)});
+
+  // Monte Carlo and cubature on sensors spread over the grid, against the exact values there.
+  const SensorGrid subset = spread(s.grid, settings.error_sensors);
+  std::vector<double> reference;
+  {
+    VisibilityCounters unused;
+    for (const Sensor& sensor : subset.sensors)
+      reference.push_back(sky_component_percent(exact_engine, s.scene, sensor, SkyModel::cie_overcast, unused));
+  }
+  const RayScene rays(s.scene);
+  for (const long n : settings.samples) {
+    status.show(prefix + fmt::format("Monte Carlo, {} rays per sensor, {} sensors", n, subset.sensors.size()));
+    std::vector<double> sc(subset.sensors.size());
+    const auto t0 = clock_type::now();
+    const double c0 = thread_cpu_seconds();
+    for (std::size_t i = 0; i < sc.size(); ++i)
+      sc[i] = sky_component_monte_carlo(rays, subset.sensors[i], SkyModel::cie_overcast, n, std::uint64_t(n) * 1000003 + i);
+    const double cpu = (thread_cpu_seconds() - c0) / double(sc.size()), wall = seconds_since(t0) / double(sc.size());
+    out.rows.push_back({s.name, "monte_carlo", std::to_string(n), cpu, wall, double(n), error_stats(sc, reference)});
+  }
+  for (const double tolerance : settings.tolerances) {
+    status.show(prefix + fmt::format("adaptive cubature, tolerance {:g}, {} sensors", tolerance, subset.sensors.size()));
+    std::vector<double> sc(subset.sensors.size());
+    long evaluations = 0;
+    VisibilityCounters unused;
+    const auto t0 = clock_type::now();
+    const double c0 = thread_cpu_seconds();
+    for (std::size_t i = 0; i < sc.size(); ++i) {
+      const CubatureResult r = sky_component_cubature(exact_engine, s.scene, subset.sensors[i], SkyModel::cie_overcast, tolerance, unused);
+      sc[i] = r.sc_percent;
+      evaluations += r.evaluations;
+    }
+    const double cpu = (thread_cpu_seconds() - c0) / double(sc.size()), wall = seconds_since(t0) / double(sc.size());
+    out.rows.push_back({s.name, "cubature", fmt::format("{:g}", tolerance), cpu, wall, double(evaluations) / double(sc.size()),
+                        error_stats(sc, reference)});
+  }
+  return out;
+}
+
+// ── All cores: scaling ──────────────────────────────────────────────────────────────────────
+
+struct ScalingRow {
+  std::string dimension;  // sensors, occluders, apertures, edges
+  int parameter;          // the count varied (sensors; boxes added; panes; polygon edges)
+  double x;               // what the exponent is fitted against (sensors; occluder polygons; panes; edges)
+  std::string mode;       // exact, float
+  std::size_t sensors;
+  int threads;
+  double seconds, cpu_seconds;  // wall; CPU time of all threads
+  std::size_t occluder_polygons, occluder_pieces, aperture_pieces;
+  VisibilityCounters counters;
+  double sc_mean;
+};
+
+struct Timed {
+  double seconds, cpu_seconds;
+  SkyComponentResult result;
+};
+
+// Best (by CPU time) of `runs` runs, stopping early once the runs have taken 2 s of wall time.
+Timed time_parallel(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid, int runs) {
+  Timed best{1e300, 1e300, {}};
+  double total = 0;
+  for (int run = 0; run < runs && total < 2; ++run) {
+    const auto t0 = clock_type::now();
+    const double c0 = process_cpu_seconds();
+    SkyComponentResult r = sky_component(engine, scene, grid, SkyModel::cie_overcast);
+    const double t = seconds_since(t0), c = process_cpu_seconds() - c0;
+    total += t;
+    if (c < best.cpu_seconds) best = {t, c, std::move(r)};
+  }
+  return best;
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0 : s / double(v.size());
+}
+
+// Sensors uniformly at random (seeded) on the office's work plane, 2 cm from the walls.
+SensorGrid random_office_grid(std::size_t count) {
+  std::mt19937_64 rng(20240501 + count);
+  std::uniform_real_distribution<double> x(0.02, 3.98), y(0.02, 5.98);
+  SensorGrid g{fmt::format("random{}", count), "", {}};
+  g.sensors.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) g.sensors.push_back({{x(rng), y(rng), 0.85}, {0, 0, 1}});
+  return g;
+}
+
+// A closed box without its floor, faces pointing out.
+std::vector<Polygon> box(const Vec3& lo, const Vec3& hi, const std::string& name) {
+  const auto face = [&](std::vector<Vec3> v, const char* side) {
+    Polygon p;
+    p.vertices = std::move(v);
+    p.name = name + " " + side;
+    p.where = {"bench scenes: " + name, 0};
+    return p;
+  };
+  return {face({{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z}}, "south"),
+          face({{hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}}, "north"),
+          face({{lo.x, hi.y, lo.z}, {lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}}, "west"),
+          face({{hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z}}, "east"),
+          face({{lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}}, "roof")};
+}
+
+// The office with k boxes (1–4 m footprints, 2–12 m high) at random in the street between the
+// window wall and the building across it (y from −17.5 to −1.5 m).
+Scene office_with_boxes(const Scene& office, int k) {
+  Scene s = office;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> cx(-8, 12), cy(-15.5, -3.5), half(0.5, 2), height(2, 12);
+  for (int i = 0; i < k; ++i) {
+    const double x = cx(rng), y = cy(rng), hx = half(rng), hy = half(rng), h = height(rng);
+    for (auto& f : box({x - hx, y - hy, 0}, {x + hx, y + hy, h}, fmt::format("box {}", i))) s.occluders.push_back(std::move(f));
+  }
+  return s;
+}
+
+// The office's window (x 0.8..3.2, z 0.9..2.4 at y = −0.3) as k panes side by side.
+Scene office_with_panes(const Scene& office, int k) {
+  Scene s = office;
+  const Aperture window = office.apertures.at(0);
+  s.apertures.clear();
+  for (int i = 0; i < k; ++i) {
+    const double x0 = 0.8 + 2.4 * i / k, x1 = i + 1 == k ? 3.2 : 0.8 + 2.4 * (i + 1) / k;
+    Aperture pane = window;
+    pane.polygon.vertices = {{x0, -0.3, 0.9}, {x0, -0.3, 2.4}, {x1, -0.3, 2.4}, {x1, -0.3, 0.9}};
+    pane.polygon.name = fmt::format("pane {}", i);
+    s.apertures.push_back(std::move(pane));
+  }
+  return s;
+}
+
+// The office's window replaced by a regular k-gon inscribed in the opening's ellipse.
+Scene office_with_polygon_window(const Scene& office, int k) {
+  Scene s = office;
+  Aperture& window = s.apertures.at(0);
+  const Vec3 normal = newell_normal(window.polygon.vertices);
+  std::vector<Vec3> v;
+  for (int i = 0; i < k; ++i) {
+    const double t = 2 * std::numbers::pi * (i + 0.5) / k;
+    v.push_back({2 + 1.2 * std::cos(t), -0.3, 1.65 + 0.75 * std::sin(t)});
+  }
+  if (dot(newell_normal(v), normal) < 0) std::reverse(v.begin(), v.end());
+  window.polygon.vertices = std::move(v);
+  return s;
+}
+
+std::vector<ScalingRow> measure_scaling(const Sample& office, const ScenesSettings& settings, bench::StatusLine& status,
+                                        PairsRow& large_grid_pairs) {
+  std::vector<ScalingRow> rows;
+  const int threads = tbb::this_task_arena::max_concurrency();
+  const auto measure = [&](const std::string& dimension, int parameter, double x, const Scene& scene, const SensorGrid& grid, int runs) {
+    for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::floating}) {
+      const char* mode_name = mode == GeometryMode::exact ? "exact" : "float";
+      status.show(fmt::format("bench scenes: scaling, {} = {}, {}, {} sensors", dimension, parameter, mode_name, grid.sensors.size()));
+      const VisibilityEngine engine(scene, mode);
+      Timed t = time_parallel(engine, scene, grid, runs);
+      rows.push_back({dimension, parameter, x, mode_name, grid.sensors.size(), threads, t.seconds, t.cpu_seconds, scene.occluders.size(),
+                      engine.occluder_piece_count(), engine.aperture_piece_count(), t.result.counters, mean(t.result.sc_percent)});
+    }
+  };
+  for (const std::size_t n : settings.sensor_counts) {
+    const SensorGrid grid = random_office_grid(n);
+    measure("sensors", int(n), double(n), office.scene, grid, settings.scaling_runs);
+    if (n == settings.sensor_counts.back()) {
+      const ScalingRow& exact = rows[rows.size() - 2];
+      large_grid_pairs = {"office", fmt::format("{} random sensors", n), n, exact.counters};
+    }
+  }
+  const SensorGrid grid = every_kth(office.grid, settings.scaling_stride);
+  for (const int k : settings.boxes) {
+    const Scene scene = office_with_boxes(office.scene, k);
+    measure("occluders", k, double(scene.occluders.size()), scene, grid, settings.scaling_runs);
+  }
+  for (const int k : settings.panes) measure("apertures", k, k, office_with_panes(office.scene, k), grid, settings.scaling_runs);
+  for (const int k : settings.edges) measure("edges", k, k, office_with_polygon_window(office.scene, k), grid, settings.scaling_runs);
+  return rows;
+}
+
+struct Fit {
+  std::string dimension, mode;
+  double exponent;
+  std::size_t points;
+  double x_low, x_high;
+};
+
+// Least-squares slope of log(CPU time) against log(x).
+std::vector<Fit> fit_exponents(const std::vector<ScalingRow>& rows) {
+  std::vector<Fit> fits;
+  for (const char* dimension : {"sensors", "occluders", "apertures", "edges"})
+    for (const char* mode : {"exact", "float"}) {
+      double sx = 0, sy = 0, sxx = 0, sxy = 0, lo = 1e300, hi = 0;
+      std::size_t n = 0;
+      for (const ScalingRow& r : rows)
+        if (r.dimension == dimension && r.mode == mode && r.x > 0 && r.cpu_seconds > 0) {
+          const double x = std::log(r.x), y = std::log(r.cpu_seconds);
+          sx += x, sy += y, sxx += x * x, sxy += x * y;
+          lo = std::min(lo, r.x), hi = std::max(hi, r.x);
+          ++n;
+        }
+      if (n >= 2) fits.push_back({dimension, mode, (n * sxy - sx * sy) / (n * sxx - sx * sx), n, lo, hi});
+    }
+  return fits;
+}
+
+// ── Reports ─────────────────────────────────────────────────────────────────────────────────
+
+void write_error_table(const std::string& path, const std::vector<ErrorRow>& rows) {
+  std::ofstream f(path);
+  f << "sample,method,parameter,sensors,cpu_time_per_sensor_s,rms_relative_error,max_relative_error,normalised_rms_error,"
+       "max_abs_error_percent,sensors_with_sky,zero_sky_sensors_nonzero,failures,work_per_sensor,wall_time_per_sensor_s,threads\n";
+  for (const ErrorRow& r : rows)
+    f << fmt::format("{},{},{},{},{:.4e},{:.3e},{:.3e},{:.3e},{:.3e},{},{},{},{:.6g},{:.4e},1\n", r.sample, r.method, r.parameter,
+                     r.errors.sensors, r.time_per_sensor_s, r.errors.rms_relative, r.errors.max_relative,
+                     r.errors.normalised_rms, r.errors.max_abs, r.errors.with_sky, r.errors.zero_sky_nonzero,
+                     r.errors.failures, r.work_per_sensor, r.wall_per_sensor_s);
+  if (!f) throw Error(path + ": cannot write");
+}
+
+void write_scaling_table(const std::string& path, const std::vector<ScalingRow>& rows) {
+  std::ofstream f(path);
+  f << "dimension,parameter,fit_x,mode,sensors,threads,cpu_s,wall_s,cpu_per_sensor_s,occluder_polygons,occluder_pieces,"
+       "aperture_pieces,pairs,pairs_clipped,pairs_rational,occluder_pieces_clipped,sc_mean_percent\n";
+  for (const ScalingRow& r : rows)
+    f << fmt::format("{},{},{},{},{},{},{:.4e},{:.4e},{:.4e},{},{},{},{},{},{},{},{:.12g}\n", r.dimension, r.parameter, r.x, r.mode,
+                     r.sensors, r.threads, r.cpu_seconds, r.seconds, r.cpu_seconds / double(r.sensors), r.occluder_polygons, r.occluder_pieces,
+                     r.aperture_pieces, r.counters.pairs, r.counters.pairs_clipped, r.counters.pairs_rational,
+                     r.counters.occluders_clipped, r.sc_mean);
+  if (!f) throw Error(path + ": cannot write");
+}
+
+void write_fit_table(const std::string& path, const std::vector<Fit>& fits) {
+  std::ofstream f(path);
+  f << "dimension,mode,exponent,points,x_low,x_high\n";
+  for (const Fit& r : fits) f << fmt::format("{},{},{:.3f},{},{:g},{:g}\n", r.dimension, r.mode, r.exponent, r.points, r.x_low, r.x_high);
+  if (!f) throw Error(path + ": cannot write");
+}
+
+void write_pairs_table(const std::string& path, const std::vector<PairsRow>& rows) {
+  std::ofstream f(path);
+  f << "sample,grid,sensors,pairs,pairs_not_facing,pairs_without_clipping,pairs_clipped_in_certified_intervals,"
+       "pairs_needing_exact_rationals,share_without_clipping,share_clipped_exactly,share_rational,occluder_pieces_culled_by_boxes,"
+       "occluder_pieces_tested_exactly,occluder_pieces_clipped\n";
+  for (const PairsRow& r : rows) {
+    const VisibilityCounters& c = r.counters;
+    const double pairs = double(std::max<std::uint64_t>(c.pairs, 1));
+    f << fmt::format("{},\"{}\",{},{},{},{},{},{},{:.4f},{:.4f},{:.6f},{},{},{}\n", r.sample, r.grid, r.sensors, c.pairs,
+                     c.pairs_not_facing, c.pairs_unobstructed, c.pairs_clipped - c.pairs_rational, c.pairs_rational,
+                     double(c.pairs_unobstructed) / pairs, double(c.pairs_clipped) / pairs, double(c.pairs_rational) / pairs,
+                     c.occluders_box_culled, c.occluders_tested, c.occluders_clipped);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
+const PlotColour kExactColour{0.05f, 0.05f, 0.05f}, kFloatColour{0.80f, 0.15f, 0.15f}, kMonteCarloColour{0.15f, 0.40f, 0.85f},
+    kCubatureColour{0.10f, 0.62f, 0.30f};
+
+Plot error_plot(const std::vector<ErrorRow>& rows, const std::vector<std::string>& samples, const ScenesSettings& s) {
+  struct Method {
+    const char* key;
+    const char* legend;
+    PlotColour colour;
+  };
+  const Method methods[] = {{"exact", "exact geometry, closed form (the reference)", kExactColour},
+                            {"float", "float geometry, closed form", kFloatColour},
+                            {"monte_carlo", "Monte Carlo rays, sky x cosine importance", kMonteCarloColour},
+                            {"cubature", "adaptive cubature on the exact region", kCubatureColour}};
+  const PlotMarker markers[] = {PlotMarker::circle, PlotMarker::square, PlotMarker::triangle, PlotMarker::diamond};
+  Plot plot;
+  plot.title = "Sky component on the samples: relative error against run time";
+  plot.subtitle = "CPU time per sensor on one core; RMS over the sensors that see sky of |SC - SC_exact| / SC_exact";
+  plot.x_label = "CPU time per sensor (s)";
+  plot.y_label = "RMS relative error";
+  plot.y_floor = 1e-17;
+  for (const Method& m : methods) plot.series.push_back({m.legend, {}, m.colour, PlotMarker::none, true});
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    plot.series.push_back({samples[i], {}, {0.45f, 0.45f, 0.45f}, markers[i % std::size(markers)], false});
+  // Drawn in reverse, so that the single points of exact and float lie on top of the curves.
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    for (auto it = std::rbegin(methods); it != std::rend(methods); ++it) {
+      const Method& m = *it;
+      PlotSeries series{"", {}, m.colour, markers[i % std::size(markers)], true};
+      for (const ErrorRow& r : rows)
+        if (r.sample == samples[i] && r.method == m.key) series.points.push_back({r.time_per_sensor_s, r.errors.rms_relative});
+      plot.series.push_back(std::move(series));
+    }
+  plot.notes = {
+      fmt::format("Monte Carlo: N = {} ... {} rays per sensor, stratified, density proportional to sky luminance x cosine.",
+                  s.samples.front(), s.samples.back()),
+      fmt::format("Cubature: Radon's degree-5 rule, adaptive, relative tolerance {:g} ... {:g}; its time includes the exact "
+                  "visible region.",
+                  s.tolerances.front(), s.tolerances.back()),
+      fmt::format("Exact and float: the whole grid{}; Monte Carlo and cubature: {} sensors spread over it. "
+                  "Table: scenes_error_vs_time.csv.",
+                  s.timing_stride > 1 ? fmt::format(" (every {}th sensor)", s.timing_stride) : "", s.error_sensors),
+      "Office, Monte Carlo: sensors at the back see slivers of sky (SC ~ 0.001 %) that few rays hit, and dominate the "
+      "RMS; the CSV also has the normalised RMS error.",
+  };
+  return plot;
+}
+
+Plot scaling_plot(const std::vector<ScalingRow>& rows, const std::vector<Fit>& fits) {
+  struct Dimension {
+    const char* key;
+    const char* legend;
+    PlotColour colour;
+  };
+  const Dimension dimensions[] = {{"sensors", "sensors (random, office floor)", {0.15f, 0.40f, 0.85f}},
+                                  {"occluders", "occluder polygons (boxes in the street)", {0.80f, 0.15f, 0.15f}},
+                                  {"apertures", "apertures (window split into panes)", {0.10f, 0.62f, 0.30f}},
+                                  {"edges", "window edges (regular k-gon)", {0.60f, 0.30f, 0.70f}}};
+  Plot plot;
+  plot.title = "Office: run time against the size of the problem";
+  plot.subtitle = fmt::format("CPU time (all {} threads) of the sky component over a grid, best of up to 3 runs",
+                              rows.empty() ? 0 : rows.front().threads);
+  plot.x_label = "count (sensors, occluder polygons, apertures, edges)";
+  plot.y_label = "CPU time (s)";
+  for (const Dimension& d : dimensions) {
+    std::string legend = d.legend;
+    for (const Fit& f : fits)
+      if (f.dimension == d.key && f.mode == std::string("exact")) legend += fmt::format(", slope {:.2f}", f.exponent);
+    for (const char* mode : {"exact", "float"}) {
+      const bool exact = mode == std::string("exact");
+      PlotSeries series{exact ? legend : "", {}, d.colour, exact ? PlotMarker::circle : PlotMarker::square, exact};
+      for (const ScalingRow& r : rows)
+        if (r.dimension == d.key && r.mode == mode) series.points.push_back({r.x, r.cpu_seconds});
+      plot.series.push_back(std::move(series));
+    }
+  }
+  plot.series.push_back({"exact geometry: circles, joined", {}, {0.45f, 0.45f, 0.45f}, PlotMarker::circle, true});
+  plot.series.push_back({"float geometry: squares", {}, {0.45f, 0.45f, 0.45f}, PlotMarker::square, false});
+  std::string exponents;
+  for (const Fit& f : fits)
+    if (f.mode == std::string("float")) exponents += fmt::format("{}{} {:.2f}", exponents.empty() ? "" : ", ", f.dimension, f.exponent);
+  std::size_t sensors = 0;
+  for (const ScalingRow& r : rows)
+    if (r.dimension != "sensors") sensors = r.sensors;
+  plot.notes = {"Exponents: least-squares slopes of log time against log count (legend: exact geometry; float: " + exponents + ").",
+                fmt::format("Occluders, apertures and edges on {} sensors of the office grid. Table: scenes_scaling.csv.", sensors)};
+  return plot;
+}
+
+std::string seconds_text(double s) {
+  if (s >= 1) return fmt::format("{:.2f} s", s);
+  if (s >= 1e-3) return fmt::format("{:.3g} ms", 1e3 * s);
+  return fmt::format("{:.3g} us", 1e6 * s);
+}
+
+void print_summary(std::ostream& out, const std::vector<ErrorRow>& rows, const std::vector<SampleResult>& results,
+                   const std::vector<ScalingRow>& scaling, const std::vector<Fit>& fits, const std::vector<PairsRow>& pairs,
+                   const ScenesSettings& settings) {
+  out << "## Error against run time (one core; CPU time per sensor; relative errors where SC_exact > 0)\n\n";
+  out << "| sample | method | parameter | CPU time per sensor | wall time | RMS rel. error | max rel. error | normalised RMS | "
+         "sky-less sensors given sky |\n";
+  out << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const ErrorRow& r : rows)
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.2e} | {:.2e} | {:.2e} | {} |\n", r.sample, r.method, r.parameter,
+                       seconds_text(r.time_per_sensor_s), seconds_text(r.wall_per_sensor_s), r.errors.rms_relative,
+                       r.errors.max_relative, r.errors.normalised_rms, r.errors.zero_sky_nonzero);
+  out << "\nexact / float CPU time per sensor, one core:";
+  for (const SampleResult& s : results)
+    out << fmt::format(" {} {:.2f};", s.pairs.sample, s.exact_s_per_sensor / s.float_s_per_sensor);
+  out << " (target: at most 2)\n";
+
+  out << "\n## Scaling (CPU time over all threads) and exponents\n\n| dimension | mode | exponent | range |\n|---|---|---|---|\n";
+  for (const Fit& f : fits) out << fmt::format("| {} | {} | {:.2f} | {:g} ... {:g} |\n", f.dimension, f.mode, f.exponent, f.x_low, f.x_high);
+  const std::size_t largest = settings.sensor_counts.back();
+  const ScalingRow *exact = nullptr, *floating = nullptr;
+  for (const ScalingRow& r : scaling)
+    if (r.dimension == "sensors" && r.parameter == int(largest)) (r.mode == "exact" ? exact : floating) = &r;
+  if (exact && floating) {
+    const double threads = exact->threads, idle = exact->cpu_seconds / threads;
+    out << fmt::format("\noffice, {} random sensors on {} threads: exact {:.2f} s wall, {:.2f} s CPU ({:.2f} s on {} idle cores); "
+                       "float {:.2f} s wall, {:.2f} s CPU; exact/float {:.2f} (CPU), {:.2f} (wall)",
+                       largest, exact->threads, exact->seconds, exact->cpu_seconds, idle, exact->threads, floating->seconds,
+                       floating->cpu_seconds, exact->cpu_seconds / floating->cpu_seconds, exact->seconds / floating->seconds);
+    if (largest >= 100000)
+      out << fmt::format("\ntargets: 100,000 sensors under 10 s on 2 cores: {} ({:.2f} s of CPU over 2 cores); exact within 2x of "
+                         "float: {}\n",
+                         exact->cpu_seconds / 2 < 10 ? "met" : "NOT met", exact->cpu_seconds / 2,
+                         exact->cpu_seconds <= 2 * floating->cpu_seconds ? "met" : "NOT met");
+    else
+      out << "\n(--quick: the 100,000-sensor target is measured by the full run)\n";
+  }
+
+  out << "\n## What the visibility routine left out (exact geometry)\n\n";
+  out << "| sample | grid | pairs | not facing | without clipping | clipped, certified in intervals | needing exact rationals |\n";
+  out << "|---|---|---|---|---|---|---|\n";
+  for (const PairsRow& p : pairs) {
+    const VisibilityCounters& c = p.counters;
+    const double n = double(std::max<std::uint64_t>(c.pairs, 1));
+    out << fmt::format("| {} | {} | {} | {:.1f} % | {:.1f} % | {:.1f} % | {:.3f} % |\n", p.sample, p.grid, c.pairs,
+                       100 * double(c.pairs_not_facing) / n, 100 * double(c.pairs_unobstructed) / n,
+                       100 * double(c.pairs_clipped - c.pairs_rational) / n, 100 * double(c.pairs_rational) / n);
+  }
+  out << "\nThe machine may be shared: CPU times are what the work costs, wall times what it took here.\n";
+}
+
+}  // namespace
+
+int run_bench_scenes(const BenchOptions& opt) {
+  const auto t0 = clock_type::now();
+  const ScenesSettings settings = settings_for(opt.quick);
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out, ec);
+  if (!std::filesystem::is_directory(opt.out)) throw Error(opt.out + ": cannot create the output directory");
+  const std::filesystem::path dir(opt.out);
+
+  const std::vector<Sample> samples{load_sample(opt.samples, "office"), load_sample(opt.samples, "hall")};
+  std::vector<SampleResult> results;
+  std::vector<ErrorRow> rows;
+  std::vector<PairsRow> pairs;
+  std::vector<ScalingRow> scaling;
+  {
+    bench::StatusLine status(!opt.quiet && stderr_is_terminal());
+    for (const Sample& s : samples) {
+      results.push_back(measure_sample(s, settings, status));
+      rows.insert(rows.end(), results.back().rows.begin(), results.back().rows.end());
+      pairs.push_back(results.back().pairs);
+    }
+    PairsRow large{};
+    scaling = measure_scaling(samples.front(), settings, status, large);
+    pairs.push_back(large);
+    status.clear();
+  }
+  const std::vector<Fit> fits = fit_exponents(scaling);
+  std::vector<std::string> names;
+  for (const Sample& s : samples) names.push_back(s.name);
+
+  StagedOutputs outputs;
+  const auto file = [&](const char* name) { return (dir / name).string(); };
+  write_error_table(outputs.stage(file("scenes_error_vs_time.csv")), rows);
+  write_scaling_table(outputs.stage(file("scenes_scaling.csv")), scaling);
+  write_fit_table(outputs.stage(file("scenes_scaling_fit.csv")), fits);
+  write_pairs_table(outputs.stage(file("scenes_pairs.csv")), pairs);
+  write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
+  write_loglog_plot(outputs.stage(file("scenes_scaling.png")), scaling_plot(scaling, fits));
+  outputs.commit();
+  print_summary(std::cout, rows, results, scaling, fits, pairs, settings);  // the results: stdout even with --quiet
+  if (!opt.quiet)
+    std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
+                             "scenes_pairs.csv into {} ({:.1f} s)\n",
+                             opt.out, seconds_since(t0));
+  return 0;
+}
+
+}  // namespace daylit::cli

@@ -1,0 +1,159 @@
+// Fuzz target: the exact visibility routine on small random scenes. The bytes decode into one
+// aperture, up to six occluders and a sensor, built as the .rad reader would accept them (planar
+// polygons, consecutive repeats dropped, zero-area and warped ones refused). Coordinates come
+// from one of four encodings: a coarse integer grid (faces share planes, edges and vertices, as
+// in buildings), a finer grid of eighths, near-degenerate offsets of 2^-20..2^-52 from the grid,
+// and floats; any of them optionally moved 5.4e6 away (georeferenced). Invariants:
+//   - nothing but daylit::Error (a polygon that crosses itself) escapes, and only from the
+//     engine's construction; no sanitizer report;
+//   - the visible solid angle is finite, ≥ 0 and ≤ that of the unoccluded aperture;
+//   - the exact (certified interval) and all-rational modes agree to 1e-9 relative + 1e-15 sr;
+//   - the float mode returns a finite solid angle.
+
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "geometry/input_checks.hpp"
+#include "geometry/rad_reader.hpp"
+#include "geometry/visibility.hpp"
+#include "illumination/solid_angle.hpp"
+
+using namespace daylit;
+
+namespace {
+
+struct Decoder {
+  FuzzedDataProvider& in;
+  int encoding = 0;
+  double offset = 0;
+
+  double scalar() {
+    switch (encoding) {
+      case 0:
+        return in.ConsumeIntegralInRange<int>(-4, 4);
+      case 1:
+        return in.ConsumeIntegralInRange<int>(-64, 64) / 8.0;
+      case 2:
+        return in.ConsumeIntegralInRange<int>(-4, 4) +
+               in.ConsumeIntegralInRange<int>(-2, 2) * std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(20, 52));
+      default:
+        return in.ConsumeFloatingPointInRange<float>(-1e3f, 1e3f);
+    }
+  }
+  Vec3 vector() { return {scalar(), scalar(), scalar()}; }
+  Vec3 point() { return vector() + Vec3{offset, offset, 0}; }
+
+  // A polygon of 3..6 vertices in a plane: axis-aligned (as most of a building), or spanned by
+  // two vectors from the same encoding (planar up to the rounding of u·e1 + v·e2).
+  std::vector<Vec3> polygon() {
+    const int kind = in.ConsumeIntegralInRange<int>(0, 3);
+    const int count = in.ConsumeIntegralInRange<int>(3, 6);
+    const Vec3 origin = point();
+    static constexpr Vec3 kAxes[3][2] = {{{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 1, 0}}};
+    const Vec3 e1 = kind == 3 ? vector() : kAxes[kind][0];
+    const Vec3 e2 = kind == 3 ? vector() : kAxes[kind][1];
+    std::vector<Vec3> v;
+    for (int i = 0; i < count; ++i) {
+      const double a = scalar(), b = scalar();
+      v.push_back(origin + a * e1 + b * e2);
+    }
+    return v;
+  }
+};
+
+// What read_rad_text would make of these vertices: consecutive repeats dropped, and refused when
+// fewer than 3 remain, when the area is zero or when it is warped beyond the tolerance.
+std::optional<Polygon> as_read(std::vector<Vec3> v, const char* name) {
+  std::vector<Vec3> kept;
+  for (const Vec3& p : v)
+    if (kept.empty() || !(kept.back() == p)) kept.push_back(p);
+  while (kept.size() > 1 && kept.front() == kept.back()) kept.pop_back();
+  if (kept.size() < 3) return std::nullopt;
+  for (const Vec3& p : kept)
+    if (!(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate && std::abs(p.z) <= kMaxCoordinate))
+      return std::nullopt;
+  const PolygonShape shape = polygon_shape(kept);
+  if (shape.zero_area || shape.deviation > kPlanarityTolerance * shape.extent) return std::nullopt;
+  Polygon p;
+  p.vertices = std::move(kept);
+  p.name = name;
+  p.where = {"fuzz", 1};
+  return p;
+}
+
+[[noreturn]] void finding(const char* what, double a, double b) {
+  std::fprintf(stderr, "%s: %.17g %.17g\n", what, a, b);
+  std::abort();
+}
+
+// With DAYLIT_FUZZ_VERBOSE set (when reproducing a finding), the decoded scene as .rad text and
+// the sensor as a .pts line, ready for `daylit df`.
+void print_scene(const Scene& scene, const Vec3& p, const Vec3& n) {
+  if (!std::getenv("DAYLIT_FUZZ_VERBOSE")) return;
+  const auto print = [](const char* file, const Polygon& poly) {
+    std::fprintf(stderr, "%s: void polygon %s 0 0 %zu", file, poly.name.c_str(), 3 * poly.vertices.size());
+    for (const Vec3& v : poly.vertices) std::fprintf(stderr, "  %.17g %.17g %.17g", v.x, v.y, v.z);
+    std::fprintf(stderr, "\n");
+  };
+  for (const auto& a : scene.apertures) print("apertures.rad", a.polygon);
+  for (const auto& o : scene.occluders) print("scene.rad", o);
+  std::fprintf(stderr, "grid.pts: %.17g %.17g %.17g %.17g %.17g %.17g\n", p.x, p.y, p.z, n.x, n.y, n.z);
+}
+
+double visible_solid_angle(const VisibilityEngine& engine, const Vec3& p, const Vec3& n) {
+  VisibilityCounters counters;
+  return solid_angle(engine.visible_region(p, n, 0, counters));
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  FuzzedDataProvider in(data, size);
+  Decoder d{in};
+  const int flags = in.ConsumeIntegral<std::uint8_t>();
+  d.encoding = flags & 3;
+  d.offset = (flags & 4) ? 5.4e6 : 0;
+
+  Scene free_scene, scene;
+  const auto aperture = as_read(d.polygon(), "aperture");
+  if (!aperture) return 0;
+  free_scene.apertures.push_back({*aperture, 1.0});
+  scene.apertures.push_back({*aperture, 1.0});
+  const int occluders = in.ConsumeIntegralInRange<int>(0, 6);
+  for (int i = 0; i < occluders; ++i)
+    if (auto o = as_read(d.polygon(), "occluder")) scene.occluders.push_back(*o);
+  const Vec3 p = d.point();
+  Vec3 n = d.vector();
+  if (!(norm(n) > 0)) n = {0, 0, 1};
+  n = normalized(n);
+
+  print_scene(scene, p, n);
+  std::optional<VisibilityEngine> free_exact, exact, rational, floating;
+  try {
+    free_exact.emplace(free_scene, GeometryMode::exact);
+    exact.emplace(scene, GeometryMode::exact);
+    rational.emplace(scene, GeometryMode::rational);
+    floating.emplace(scene, GeometryMode::floating);
+  } catch (const Error&) {
+    return 0;  // a polygon crosses itself: the reader's caller reports it with file:line
+  }
+  const double unoccluded = visible_solid_angle(*free_exact, p, n);
+  const double e = visible_solid_angle(*exact, p, n);
+  const double r = visible_solid_angle(*rational, p, n);
+  const double f = visible_solid_angle(*floating, p, n);
+  if (!std::isfinite(unoccluded) || !std::isfinite(e) || !std::isfinite(r)) finding("non-finite solid angle", e, r);
+  if (!std::isfinite(f)) finding("non-finite solid angle in float mode", f, r);
+  const double slack = 1e-9 * unoccluded + 1e-15;
+  if (e < -slack || r < -slack) finding("negative visible solid angle (exact, rational)", e, r);
+  if (e > unoccluded + slack) finding("occluders add solid angle (visible, unoccluded)", e, unoccluded);
+  if (std::abs(e - r) > 1e-9 * std::abs(r) + 1e-15) finding("exact and rational modes disagree", e, r);
+  return 0;
+}
