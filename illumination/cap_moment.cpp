@@ -381,7 +381,7 @@ Evaluation clipped_cap(const Vec3& axis, const Vec3& clip, double sigma, int n, 
 
 constexpr int kMaxPower = 100000;
 
-void check_power(int n) {
+void check_power(long long n) {
   if (n < 0 || n > kMaxPower)
     throw Error("cap moments take powers from 0 to " + std::to_string(kMaxPower) + ", not " + std::to_string(n));
 }
@@ -399,13 +399,18 @@ std::string vector_text(const Vec3& v) {
   return out.str();
 }
 
-// 1 − cos^m σ without cancellation: −expm1(m ln cos σ) with ln cos σ = log1p(−2 sin²(σ/2)); for
-// cos σ < 0 the same with |cos σ| = 1 − 2 cos²(σ/2).
+// 1 − cos^m σ without cancellation: −expm1(m ln cos σ) with ln cos σ = log1p(−2 sin²(σ/2)) for
+// σ < π/3; for σ > 2π/3 the same with |cos σ| = 1 − 2 cos²(σ/2); between, |cos σ| ≤ ½ and the
+// plain form cannot cancel.
 double one_minus_cos_power(double sigma, int m) {
-  const double s = std::sin(sigma / 2), c = std::cos(sigma / 2);
-  if (sigma <= M_PI / 2) return -std::expm1(m * std::log1p(-2 * s * s));
-  const double magnitude_power = std::exp(m * std::log1p(-2 * c * c));  // |cos σ|^m
-  return m % 2 == 0 ? -std::expm1(m * std::log1p(-2 * c * c)) : 1 + magnitude_power;
+  if (sigma < M_PI / 3) {
+    const double s = std::sin(sigma / 2);
+    return -std::expm1(m * std::log1p(-2 * s * s));
+  }
+  if (sigma <= 2 * M_PI / 3) return 1 - std::pow(std::cos(sigma), m);
+  const double c = std::cos(sigma / 2);
+  const double log_magnitude = std::log1p(-2 * c * c);  // ln |cos σ|
+  return m % 2 == 0 ? -std::expm1(m * log_magnitude) : 1 + std::exp(m * log_magnitude);
 }
 
 }  // namespace
@@ -429,11 +434,13 @@ double cap_moment(const Vec3& cap_axis, double half_angle, const std::optional<V
     throw Error("the cap half-angle must be in (0, pi] radians");
   if (clip && (!is_finite(*clip) || !(norm(*clip) > 0))) throw Error("the clip normal must be a finite non-zero vector");
 
-  int clip_power = 0, axis_power = 0;
+  long long clip_power = 0, axis_power = 0;
   double scale = 1;
   for (const Factor& f : factors) {
     if (f.power < 0) throw Error("factor powers must be non-negative");
     if (f.power == 0) continue;
+    if (f.power > kMaxPower || clip_power + axis_power + f.power > 2 * kMaxPower)
+      throw Error("cap moments take powers up to " + std::to_string(kMaxPower));
     if (!is_finite(f.axis) || !(norm(f.axis) > 0)) throw Error("a factor axis must be a finite non-zero vector");
     if (clip && positively_parallel(f.axis, *clip)) clip_power += f.power;
     else if (positively_parallel(f.axis, cap_axis)) axis_power += f.power;
@@ -450,12 +457,12 @@ double cap_moment(const Vec3& cap_axis, double half_angle, const std::optional<V
       throw Error("cap moment: the factor pattern (c^" + std::to_string(clip_power) + ", L^" +
                   std::to_string(axis_power) + ") is not supported; supported with a clip c: (), (c^n), (c^n, L^1)");
     check_power(clip_power);
-    const Evaluation e = clipped_cap(cap_axis, *clip, half_angle, clip_power, axis_power == 1);
+    const Evaluation e = clipped_cap(cap_axis, *clip, half_angle, int(clip_power), axis_power == 1);
     value = e.value;
     error = e.relative_error;
   } else {
     check_power(axis_power);
-    value = 2 * M_PI * one_minus_cos_power(half_angle, axis_power + 1) / (axis_power + 1);
+    value = 2 * M_PI * one_minus_cos_power(half_angle, int(axis_power) + 1) / double(axis_power + 1);
     error = 1e-15;
   }
   if (!(error <= 1e-10))

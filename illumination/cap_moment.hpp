@@ -12,21 +12,25 @@
 //     forward:  P(n) = Σ_{i ≡ n (2), i ≤ n} J(i)  (+ K, the horizon arc, in J(1); + I(0) for even n),
 //     tail:     P(n) = 2π·[c ∈ C] − Σ_{k ≥ 0} J(n + 2 + 2k),
 // the second because (n + 1) I(n) → 2π·[c ∈ C] as n → ∞. The forward sum loses a factor of about
-// z_top^−n to cancellation when the region lies below the pole (relative error 1e+13 at n = 1000,
-// measured); the tail loses nothing there and converges like z_max^{2k}, z_max = cos(ω − σ) the
-// top of the circle. Both are evaluated and the one whose terms cancel least is kept. The J(i)
-// need the arc integrals f_m = ∫ z^m dφ and g_m = ∫ z^m cos φ dφ over the arc (Snyder's F and G,
-// appendix D): by his upward recurrence where the top of the circle is the nearest point to the
-// pole (every term positive), and otherwise, where the upward recurrence grows the unwanted
-// solution like (|z_min|/z_max)^m (1e+44 at n = 1000, σ = 1.2, ω = 1.7), by the backward
-// three-term recurrence (again every term positive) started from a positive series and normalised
-// to f_0 (Miller). Caps larger than a hemisphere are the hemisphere minus the cap (−L, π − σ).
+// z_top^−n to cancellation when the region lies below the pole; the tail loses nothing there and
+// converges like z_max^{2k}, z_max = cos(ω − σ) the top of the circle. The forward sum is
+// evaluated first and the tail only where the forward terms cancel; the form whose terms cancel
+// least is kept. The J(i) need the arc integrals f_m = ∫ z^m dφ and g_m = ∫ z^m cos φ dφ over the
+// arc (Snyder's F and G, appendix D): by his upward recurrence where the top of the circle is the
+// nearest point to the pole (every term positive), and otherwise, where that recurrence grows the
+// unwanted solution like (|z_min|/z_max)^m, by the backward three-term recurrence (again every
+// term positive) started from a positive series and normalised to f_0 (Miller). Caps larger than
+// a hemisphere are the hemisphere minus the cap (−L, π − σ).
+// Measured: Snyder's own code (appendices E–F, odd n, double) returns −3e−17 for 2.2e−119 at
+// n = 1001, ω = 1, σ = 0.3, and 6e−16 for 3.6e−59 at n = 1001, ω = 1.7, σ = 1.2 (relative errors
+// 1e+102 and 2e+43); at n = 101 in the second case it is still off by 2e−9.
 //
 // Accuracy: every result is computed in long double with the magnitude of its terms, and again in
-// __float128 when 2^−64·κ·(16 + 2√m) exceeds 1e−16 (κ = Σ|terms|/|result|, m the recurrence
-// length); measured against 50-digit references: ≤ 3e−15 relative for n ≤ 10,000, σ ∈ [1e−6, π],
-// ω ∈ [0, π] including 0, π/2 ± σ and π, as long as the result is a normal double (results below
-// 1e−308 may lose digits; below 1e−330 they are returned as 0).
+// __float128 when 2^−64·κ·(16 + 2√m) exceeds 4e−16 (κ = Σ|terms|/|result|, m the recurrence
+// length). Measured against 40-digit mpmath integrals over z on 2,176 cases (n from 0 to 10,000,
+// σ from 1e−6 to π, ω at and within 1e−9 of 0, σ, π/2 ± σ and π): at most 1.1e−15 relative,
+// typically below 3e−16, as long as the result is a normal double (results below 1e−308 may lose
+// digits; below 1e−330 they are returned as 0).
 
 #include <optional>
 #include <vector>

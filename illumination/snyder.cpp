@@ -16,9 +16,6 @@ using LD = long double;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr LD kPiL = 3.141592653589793238462643383279502884L;
-// π as a double and the rest: π − ω to 107 bits for ω near π.
-constexpr double kPiHi = 3.141592653589793116;
-constexpr double kPiLo = 1.2246467991473532e-16;
 // π as a long double (3.14159265358979323851…) and the rest, for the same in long double.
 constexpr LD kPiLoL = -5.016557612668332023557e-20L;
 constexpr LD kEpsL = 0x1p-64L;
@@ -29,15 +26,15 @@ LD half_pi_minus(LD x) { return (kPiL / 2 - x) + kPiLoL / 2; }
 
 double clamp_angle(double omega) { return std::clamp(omega, 0.0, kPi); }
 
-// x − sin x for x ∈ [0, π]: its Taylor series below 2 (terms fall by x²/20 ≤ 0.2 each, no
+// x − sin x for x ∈ [0, 2π]: its Taylor series below 2 (terms fall by x²/20 ≤ 0.2 each, no
 // cancellation), directly above (x − sin x ≥ 1.09 there, cancellation ≤ 2×).
-double x_minus_sin(double x) {
+LD x_minus_sin(LD x) {
   if (x >= 2) return x - std::sin(x);
-  const double x2 = x * x;
-  double term = x * x2 / 6, sum = 0;
-  for (int k = 0; std::fabs(term) > 1e-18 * std::fabs(sum) || k == 0; ++k) {
+  const LD x2 = x * x;
+  LD term = x * x2 / 6, sum = 0;
+  for (int k = 0; std::fabs(term) > kEpsL / 8 * std::fabs(sum) || k == 0; ++k) {
     sum += term;
-    term *= -x2 / ((2 * k + 4) * (2 * k + 5));
+    term *= -x2 / LD((2 * k + 4) * (2 * k + 5));
   }
   return sum;
 }
@@ -112,14 +109,14 @@ double I_hemi_const(double omega) noexcept {
 
 double I_hemi_cos(double omega) noexcept {
   omega = clamp_angle(omega);
+  const LD eps = pi_minus(omega);  // π − ω
   if (omega <= kPi / 2) {
-    const double s = std::sin(omega), c = std::cos(omega);
-    return 2 / (3 * kPi) * (s * s * s + c * ((kPiHi - omega) + kPiLo) + s * c * c);
+    const LD s = std::sin(LD(omega)), c = std::cos(LD(omega));
+    return double(2 / (3 * kPiL) * (s * s * s + c * eps + s * c * c));
   }
-  const double eps = (kPiHi - omega) + kPiLo;  // π − ω
-  const double s = std::sin(eps), c = std::cos(eps);
-  // sin³ε − cos ε (ε − sin ε cos ε), ε − sin ε cos ε = (2ε − sin 2ε)/2.
-  return 2 / (3 * kPi) * (s * s * s - c * x_minus_sin(2 * eps) / 2);
+  const LD s = std::sin(eps), c = std::cos(eps);
+  // sin³ε − cos ε (ε − sin ε cos ε), ε − sin ε cos ε = (2ε − sin 2ε)/2: the terms cancel to ε³/3.
+  return double(2 / (3 * kPiL) * (s * s * s - c * x_minus_sin(2 * eps) / 2));
 }
 
 double I_hemi_sum(double omega, double alpha, double beta) noexcept {
@@ -157,7 +154,7 @@ double I_hemi_sub_hermite(double omega, double sigma) {
   if (omega <= x0) return std::cos(omega) * ss * ss;
   if (omega >= x2) return 0;
   const double f0 = ss * ss * ss, d0 = -cs * ss * ss;
-  const double f1 = x_minus_sin(2 * sigma) / (2 * kPi), d1 = -ss * ss / 2;  // (σ − sin σ cos σ)/π
+  const double f1 = double(x_minus_sin(2 * LD(sigma)) / (2 * kPiL)), d1 = -ss * ss / 2;  // (σ − sin σ cos σ)/π
   if (omega <= x1) return hermite(omega, x0, x1, f0, d0, f1, d1);
   return hermite(omega, x1, x2, f1, d1, 0, 0);
 }
@@ -217,7 +214,7 @@ double I_poly_phong(const SphericalRegion& region, const Vec3& R, int n) {
   const Vec3 r = normalized(R);
   const SphericalRegion visible = clip_to_hemisphere(region, r);
   if (visible.empty()) return 0;
-  return axial_moments(visible, r, n).back() * (n + 1) / (2 * kPi);
+  return axial_moment(visible, r, n) * (n + 1) / (2 * kPi);
 }
 
 double sphere_half_angle(double distance, double radius) {
