@@ -7,7 +7,10 @@
 //   - nothing but daylit::Error (a polygon that crosses itself) escapes, and only from the
 //     engine's construction; no sanitizer report;
 //   - the visible solid angle is finite, ≥ 0 and ≤ that of the unoccluded aperture;
-//   - the exact (certified interval) and all-rational modes agree to 1e-9 relative + 1e-15 sr;
+//   - the exact (certified interval) and all-rational modes agree to 1e-9 relative + 1e-13 of the
+//     unoccluded aperture's solid angle: both hand the kernels directions rounded to double, so a
+//     sliver of 1e-12 sr cut from a 0.1 sr window carries ~1e-15 sr of rounding in either (the
+//     fuzzer found exactly that: 1.9270e-12 against 1.9283e-12 sr);
 //   - the float mode returns a finite solid angle.
 
 #include <fuzzer/FuzzedDataProvider.h>
@@ -154,6 +157,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const double slack = 1e-9 * unoccluded + 1e-15;
   if (e < -slack || r < -slack) finding("negative visible solid angle (exact, rational)", e, r);
   if (e > unoccluded + slack) finding("occluders add solid angle (visible, unoccluded)", e, unoccluded);
-  if (std::abs(e - r) > 1e-9 * std::abs(r) + 1e-15) finding("exact and rational modes disagree", e, r);
+  if (std::abs(e - r) > 1e-9 * std::abs(r) + 1e-13 * unoccluded + 1e-15) finding("exact and rational modes disagree", e, r);
   return 0;
 }

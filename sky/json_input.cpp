@@ -20,6 +20,9 @@ nlohmann::json parse(const std::string& text, const std::string& name) {
     std::string what = e.what();
     if (const auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
     throw input_error({name, line}, "JSON syntax error: " + what);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond double ("1e400"): nlohmann gives no position for it (found by fuzz_site_json).
+    throw Error(name + ": JSON number out of range (" + std::string(e.what()) + ")");
   }
 }
 

@@ -152,9 +152,10 @@ Site site_from_json(const nlohmann::json& doc, const std::string& name) {
     static const char* const kCommon[] = {"elevation_m", "ground_z_m", "name", "description", "comment"};
     static const char* const kGeographic[] = {"latitude_deg", "longitude_deg", "north_deg"};
     static const char* const kUtm[] = {"utm", "origin_easting_m", "origin_northing_m"};
-    const auto in = [&](const auto& keys) {
+    // (key is copied by reference explicitly: clang 14 cannot capture a structured binding.)
+    const auto in = [&, &key_ = key](const auto& keys) {
       for (const char* k : keys)
-        if (key == k) return true;
+        if (key_ == k) return true;
       return false;
     };
     if (in(kCommon)) {
