@@ -1,8 +1,9 @@
 // One query per input line, one answer per output line, in order: {"id": …, "value": v}, or
 // {"id": …, "error": "…"} for a query that cannot be answered (the run goes on). The query
-// fields are those of the kernel issue: quantity "moment", region {"polygon", "origin"} (a cap
-// region is not supported yet), optional "clip", "factors" [{"axis", "power"}], and
-// "denominator" (rational moments: not supported yet).
+// fields are those of the kernel issue: quantity "moment", region {"polygon", "origin"} or
+// {"cap": {"axis", "half_angle"}}, optional "clip", "factors" [{"axis", "power"}], and
+// "denominator" (rational moments: not supported yet); and quantity "sky_irradiance" (the sky
+// issue: a polygon region, "normal", "sky" {"cie", "sun_zenith", "sun_azimuth", "method"?}).
 
 #include "cli/eval_command.hpp"
 
