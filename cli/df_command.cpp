@@ -7,18 +7,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_inputs.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/reports.hpp"
 #include "cli/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
-#include "sky/context_buildings.hpp"
-#include "sky/site.hpp"
 #include "sky/sky_component.hpp"
 
 namespace daylit::cli {
@@ -26,40 +24,16 @@ namespace daylit::cli {
 namespace {
 
 struct DfOptions {
-  std::vector<std::string> scene_files, aperture_files, grid_files;
+  ModelFiles files;
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
   std::string out, summary, image;
-  std::string site, context;
-  double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
   int threads = 0;
   bool quiet = false;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-nlohmann::json counters_json(const VisibilityCounters& c) {
-  return {
-      {"sensor_aperture_pairs", c.pairs},
-      {"pairs_not_facing", c.pairs_not_facing},
-      {"pairs_without_clipping", c.pairs_unobstructed + c.pairs_not_facing},
-      {"pairs_unobstructed", c.pairs_unobstructed},
-      {"pairs_clipped", c.pairs_clipped},
-      {"pairs_clipped_in_certified_intervals", c.pairs_clipped - c.pairs_rational},
-      {"pairs_needing_exact_rationals", c.pairs_rational},
-      {"occluder_pieces_culled_by_boxes", c.occluders_box_culled},
-      {"occluder_pieces_tested_exactly", c.occluders_tested},
-      {"occluder_pieces_clipped", c.occluders_clipped},
-  };
-}
-
-// Image path for grid g: the given path itself for one grid, else with the grid name inserted.
-std::string image_path_for(const std::string& image, const std::string& grid_name, std::size_t grid_count) {
-  if (grid_count == 1) return image;
-  const std::filesystem::path p(image);
-  return (p.parent_path() / (p.stem().string() + "-" + grid_name + p.extension().string())).string();
 }
 
 int run_df(const DfOptions& opt) {
@@ -71,25 +45,9 @@ int run_df(const DfOptions& opt) {
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 
-  if (!opt.context.empty() && opt.site.empty())
-    throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
-  Scene scene = load_scene(opt.scene_files, opt.aperture_files);
-  if (scene.apertures.empty())
-    throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
-  std::vector<SensorGrid> grids;
-  for (const auto& f : opt.grid_files) grids.push_back(read_sensor_grid(f));
-  std::optional<Site> site;
-  std::optional<ContextPlacement> context;
-  if (!opt.site.empty()) {
-    site = read_site_file(opt.site);
-    scene.notices.push_back("site " + opt.site + ": " + site->description());
-  }
-  if (!opt.context.empty()) {
-    const ContextBuildings buildings = read_context_buildings(opt.context, *site);
-    scene.notices.insert(scene.notices.end(), buildings.notices.begin(), buildings.notices.end());
-    context = place_context_buildings(buildings, grids, sky, opt.context_min_angle_deg, scene);
-    scene.notices.insert(scene.notices.end(), context->notices.begin(), context->notices.end());
-  }
+  ModelInputs model = load_model(opt.files, sky);
+  const Scene& scene = model.scene;
+  const std::vector<SensorGrid>& grids = model.grids;
   if (!opt.quiet)
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
 
@@ -128,44 +86,14 @@ int run_df(const DfOptions& opt) {
        {{"erc", "externally reflected component: not computed (obstructions are black)"},
         {"irc", "internally reflected component: not computed (room surfaces are black)"}}},
       {"df_percent_is", "sc_percent"}};
-  if (site) {
-    const GeographicPosition& o = site->origin();
-    summary["site"] = {{"path", opt.site},
-                       {"latitude_deg", o.latitude_deg},
-                       {"longitude_deg", o.longitude_deg},
-                       {"elevation_m", o.height_m},
-                       {"north_deg", site->north_deg()},
-                       {"ground_z_m", site->ground_z_m()}};
-    if (const auto& utm = site->utm_grid())
-      summary["site"]["utm"] = {{"zone", utm->zone},
-                                {"northern", utm->northern},
-                                {"origin_easting_m", utm->origin_easting_m},
-                                {"origin_northing_m", utm->origin_northing_m},
-                                {"meridian_convergence_deg", utm->convergence_deg}};
-  }
-  if (context)
-    summary["context"] = {{"path", opt.context},
-                          {"buildings_read", context->read},
-                          {"placed", context->placed},
-                          {"faces", context->faces},
-                          {"left_out",
-                           {{"holding_the_model", context->enclosing_model},
-                            {"below_the_horizon", context->below_horizon},
-                            {"behind_the_apertures", context->behind_apertures},
-                            {"smaller_than_min_angle", context->too_small}}},
-                          {"min_angle_deg", context->min_angular_size_deg},
-                          {"sc_change_bound_percent", context->sc_change_bound_percent},
-                          {"rule", context->rule}};
-  summary["scene"] = {{"occluders", scene.occluders.size()},
-                      {"occluder_pieces", engine.occluder_piece_count()},
-                      {"apertures", scene.apertures.size()},
-                      {"aperture_pieces", engine.aperture_piece_count()},
-                      {"notices", scene.notices}};
+  if (model.site) summary["site"] = site_json(*model.site, opt.files.site);
+  if (model.context) summary["context"] = context_json(*model.context, opt.files.context);
+  summary["scene"] = scene_json(scene, engine);
   for (const auto& r : reports) {
     const auto& s = r.statistics;
     nlohmann::json shares;
     for (std::size_t t = 0; t < s.share_at_or_above.size(); ++t)
-      shares[fmt::format("{:g}", GridStatistics::kThresholds[t])] = s.share_at_or_above[t];
+      shares[fmt::format("{:g}", s.thresholds[t])] = s.share_at_or_above[t];
     summary["grids"].push_back({{"name", r.grid->name},
                                 {"path", r.grid->path},
                                 {"count", s.count},
@@ -205,10 +133,11 @@ std::function<int()> add_df_command(CLI::App& app) {
       "height property) are placed in the model frame and extruded into opaque prisms; those that cannot\n"
       "be seen through any aperture, and those smaller than --context-min-angle from every aperture, are\n"
       "left out, and the summary says how many and bounds what that changes.");
-  df->add_option("--scene", opt->scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
+  ModelFiles& files = opt->files;
+  df->add_option("--scene", files.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
-  df->add_option("--apertures", opt->aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  df->add_option("--grid", opt->grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  df->add_option("--apertures", files.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
+  df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
   df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
       ->check(CLI::IsMember({"cie-overcast", "uniform"}));
   df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
@@ -219,16 +148,16 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "doubles, for comparison) or rational (rationals throughout: a slow reference)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
-  df->add_option("--site", opt->site,
+  df->add_option("--site", files.site,
                  "Site JSON: {\"latitude_deg\", \"longitude_deg\", \"elevation_m\", \"north_deg\"} (north_deg: true north's angle "
                  "clockwise from the model's +y, seen from above) or {\"utm\": {\"zone\", \"northern\"}, \"origin_easting_m\", "
                  "\"origin_northing_m\", \"elevation_m\"} for a model on a UTM grid")
       ->check(CLI::ExistingFile);
-  df->add_option("--context", opt->context,
+  df->add_option("--context", files.context,
                  "GeoJSON of neighbouring buildings: Polygon/MultiPolygon footprints in WGS84 with a \"height\" property "
                  "(m; optional \"min_height\" or \"base\"), extruded into occluders; needs --site")
       ->check(CLI::ExistingFile);
-  df->add_option("--context-min-angle", opt->context_min_angle_deg,
+  df->add_option("--context-min-angle", files.context_min_angle_deg,
                  "Leave out context buildings whose angular size from every aperture is below this (degrees; default 0.1, "
                  "0: keep all that can be seen); the summary bounds the change it makes")
       ->check(CLI::Range(0.0, 179.0));

@@ -173,18 +173,16 @@ double answer_moment(const json& q) {
 
 // {"quantity": "sky_irradiance", "region": R, "normal": n, "sky": {"cie": 1..15, "sun_zenith": deg,
 // "sun_azimuth": deg, "method": "quadrature"|"fit"}}: E/L_z over the part of R above the horizon and
-// in front of n (x east, y north, z up; azimuth clockwise from north). Type 5 is uniform and
-// exact; the others by adaptive quadrature of ISO 15469's formula to 1e-12 (the reference, the
-// default) or by the closed-form moments of the fitted luminance (fast; its error is the fit's).
+// in front of n (x east, y north, z up; azimuth clockwise from north). R is a polygon seen from an
+// origin or a cap {"axis", "half_angle"}. Polygons: type 5 is uniform and exact; the others by
+// adaptive quadrature of ISO 15469's formula to 1e-12 (the reference, the default) or by the
+// closed-form moments of the fitted luminance (fast; its error is the fit's). Caps: nested
+// adaptive quadrature to 1e-12 (cie_sky_irradiance_over_cap).
 json answer_sky_irradiance(const json& q) {
   if (!q.contains("region") || !q["region"].is_object()) throw Error("a sky_irradiance query needs a \"region\" object");
   const json& r = q["region"];
-  if (!r.contains("polygon") || !r.contains("origin"))
-    throw Error("sky_irradiance supports polygon regions ({\"polygon\": [...], \"origin\": [...]})");
-  const json& poly = r["polygon"];
-  if (!poly.is_array() || poly.size() < 3) throw Error("region.polygon must have at least 3 vertices");
-  std::vector<Vec3> vertices;
-  for (std::size_t i = 0; i < poly.size(); ++i) vertices.push_back(vector_field(poly[i], "region.polygon[" + std::to_string(i) + "]"));
+  if (!r.contains("cap") && (!r.contains("polygon") || !r.contains("origin")))
+    throw Error("region must be {\"polygon\": [...], \"origin\": [...]} or {\"cap\": {\"axis\": [...], \"half_angle\": radians}}");
   const Vec3 n = vector_field(q.value("normal", json()), "normal");
   if (!(norm(n) > 0)) throw Error("normal must be non-zero");
   const json& sky = q.value("sky", json());
@@ -193,9 +191,26 @@ json answer_sky_irradiance(const json& q) {
   if (!sky["cie"].is_number_integer()) throw Error("sky.cie must be an integer 1..15");
   if (!sky["sun_zenith"].is_number() || !sky["sun_azimuth"].is_number()) throw Error("sky.sun_zenith and sky.sun_azimuth must be numbers");
   const CieSky cie(sky["cie"].get<int>(), sun_direction(sky["sun_zenith"].get<double>(), sky["sun_azimuth"].get<double>()));
+  const std::string method = sky.value("method", "quadrature");
+  if (r.contains("cap")) {
+    const json& cap = r["cap"];
+    if (!cap.is_object() || !cap.contains("axis") || !cap.contains("half_angle"))
+      throw Error("region.cap must be {\"axis\": [x,y,z], \"half_angle\": radians}");
+    const Vec3 axis = vector_field(cap["axis"], "region.cap.axis");
+    if (!(norm(axis) > 0)) throw Error("region.cap.axis must be non-zero");
+    const json& h = cap["half_angle"];
+    if (!h.is_number() || !(h.get<double>() > 0 && h.get<double>() <= M_PI))
+      throw Error("region.cap.half_angle must be a number in (0, pi] (radians)");
+    if (method != "quadrature")
+      throw Error("sky.method \"fit\" has no closed form over caps (its terms are moments about three axes); use quadrature");
+    return cie_sky_irradiance_over_cap(cie, axis, h.get<double>(), normalized(n), 1e-12).value;
+  }
+  const json& poly = r["polygon"];
+  if (!poly.is_array() || poly.size() < 3) throw Error("region.polygon must have at least 3 vertices");
+  std::vector<Vec3> vertices;
+  for (std::size_t i = 0; i < poly.size(); ++i) vertices.push_back(vector_field(poly[i], "region.polygon[" + std::to_string(i) + "]"));
   const SphericalRegion region =
       above_horizon_and_in_front(directions_through(vertices, vector_field(r["origin"], "region.origin")), normalized(n));
-  const std::string method = sky.value("method", "quadrature");
   if (method == "fit") return cie_sky_irradiance(fit_cie_sky(cie), cie.sun, region, normalized(n));
   if (method != "quadrature") throw Error("sky.method must be \"quadrature\" or \"fit\"");
   if (cie.type == 5) return lambert(region, normalized(n));  // uniform: L = L_z exactly

@@ -8,6 +8,7 @@
 #include "cli/bench_command.hpp"
 #include "cli/df_command.hpp"
 #include "cli/eval_command.hpp"
+#include "cli/illuminance_command.hpp"
 #include "cli/sun_command.hpp"
 #include "geometry/error.hpp"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   // Argument errors read like every other error: "error: --site: latitude 95 is not within …".
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return "error: " + CLI::FailureMessage::simple(a, e); });
   auto run_df = daylit::cli::add_df_command(app);
+  auto run_illuminance = daylit::cli::add_illuminance_command(app);
   auto run_eval = daylit::cli::add_eval_command(app);
   auto run_bench = daylit::cli::add_bench_command(app);
   auto run_sun = daylit::cli::add_sun_command(app);
@@ -28,6 +30,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("df")) return run_df();
+    if (app.got_subcommand("illuminance")) return run_illuminance();
     if (app.got_subcommand("eval")) return run_eval();
     if (app.got_subcommand("bench")) return run_bench();
     if (app.got_subcommand("sun")) return run_sun();

@@ -78,7 +78,7 @@ void write_image(const std::string& path, const GridReport& report) {
   // Colour scale up to a round number above the 95th percentile, so that a few bright sensors by
   // a window do not leave the rest of the room in one colour; higher values show at the top
   // colour and the legend's top label says "+".
-  std::vector<double> sorted = report.df_percent;
+  std::vector<double> sorted = report.image_values();
   std::sort(sorted.begin(), sorted.end());
   const double scale_max = nice_ceiling(sorted[std::size_t(0.95 * double(sorted.size() - 1))]);
   OIIO::ImageBuf values(OIIO::ImageSpec(map_w, map_h, 1, OIIO::TypeDesc::FLOAT));
@@ -90,7 +90,7 @@ void write_image(const std::string& path, const GridReport& report) {
     const int x1 = std::min(map_w, int(std::ceil(cx + 0.5 * dx * pixels_per_m)));
     const int y0 = std::max(0, int(std::floor(cy - 0.5 * dy * pixels_per_m)));
     const int y1 = std::min(map_h, int(std::ceil(cy + 0.5 * dy * pixels_per_m)));
-    const float v = float(std::clamp(report.df_percent[i] / scale_max, 0.0, 1.0));
+    const float v = float(std::clamp(report.image_values()[i] / scale_max, 0.0, 1.0));
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         values.setpixel(x, y, &v);
@@ -115,10 +115,11 @@ void write_image(const std::string& path, const GridReport& report) {
     }
 
   const auto& st = report.statistics;
-  text(canvas, margin, 28, fmt::format("Daylight factor (%), grid '{}'", report.grid->name), 20);
+  const std::string& unit = report.shown_unit;
+  text(canvas, margin, 28, fmt::format("{}, grid '{}'", report.shown_title, report.grid->name), 20);
   text(canvas, margin, 54,
-       fmt::format("{} sensors   mean {:.2f} %   median {:.2f} %   min {:.2f} %   max {:.2f} %", st.count, st.mean,
-                   st.median, st.min, st.max),
+       fmt::format("{0} sensors   mean {1:.4g} {5}   median {2:.4g} {5}   min {3:.4g} {5}   max {4:.4g} {5}", st.count,
+                   st.mean, st.median, st.min, st.max, unit),
        14);
   text(canvas, margin, header_h + map_h + 28,
        fmt::format("plan view, +y up; {:.2f} m x {:.2f} m", width_m, height_m), 14);
@@ -141,9 +142,9 @@ void write_image(const std::string& path, const GridReport& report) {
     const int y = bar_y + int(std::lround((bar_h - 1) * (1 - t / 4.0)));
     for (int x = bar_w; x < bar_w + 6; ++x) canvas.setpixel(bar_x + x, y, black, 3);
     const double label = scale_max * t / 4.0;
-    text(canvas, bar_x + bar_w + 10, y + 5, fmt::format("{:g} %{}", label, t == 4 && st.max > scale_max ? "+" : ""), 14);
+    text(canvas, bar_x + bar_w + 10, y + 5, fmt::format("{:g} {}{}", label, unit, t == 4 && st.max > scale_max ? "+" : ""), 14);
   }
-  text(canvas, bar_x, bar_y + bar_h + 24, "DF (%)", 14);
+  text(canvas, bar_x, bar_y + bar_h + 24, report.shown_title, 14);
 
   if (!canvas.write(path)) throw Error(path + ": cannot write image (" + canvas.geterror() + ")");
 }

@@ -2,6 +2,7 @@
 // Writers for the results of `daylit df`: CSV table, JSON summary, falsecolour plan image.
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,11 @@ struct GridReport {
   const SensorGrid* grid = nullptr;
   std::vector<double> sc_percent;
   std::vector<double> df_percent;
+  // What the falsecolour image maps: df_percent in % unless `shown` is set (`daylit illuminance`
+  // shows lux).
+  std::vector<double> shown;
+  std::string shown_title = "Daylight factor (%)", shown_unit = "%";
+  const std::vector<double>& image_values() const { return shown.empty() ? df_percent : shown; }
   GridStatistics statistics;
   VisibilityCounters counters;
   double run_time_s = 0;
@@ -24,7 +30,15 @@ struct GridReport {
 void write_csv(const std::string& path, const std::vector<GridReport>& reports);
 void write_csv(std::FILE* out, const std::vector<GridReport>& reports);
 
-// Plan view (looking down −z) of one grid in falsecolour with a legend in DF %.
+// Image path for one of several grids: the given path itself for one grid, else with the grid's
+// name inserted before the extension.
+inline std::string image_path_for(const std::string& image, const std::string& grid_name, std::size_t grid_count) {
+  if (grid_count == 1) return image;
+  const std::filesystem::path p(image);
+  return (p.parent_path() / (p.stem().string() + "-" + grid_name + p.extension().string())).string();
+}
+
+// Plan view (looking down −z) of one grid in falsecolour with a legend (DF % or lux).
 void write_falsecolour_image(const std::string& path, const GridReport& report);
 
 }  // namespace daylit::cli

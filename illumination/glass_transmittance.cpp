@@ -8,16 +8,23 @@
 
 namespace daylit {
 
-namespace {
-
-constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
-
-// Σ c_k μ^k by Horner's rule.
-double evaluate(const std::vector<double>& c, double mu) {
+double evaluate_polynomial(const std::vector<double>& c, double mu) noexcept {
   double sum = 0;
   for (auto it = c.rbegin(); it != c.rend(); ++it) sum = sum * mu + *it;
   return sum;
 }
+
+double max_slope(const std::vector<double>& c) {
+  std::vector<double> derivative;
+  for (std::size_t k = 1; k < c.size(); ++k) derivative.push_back(double(k) * c[k]);
+  double slope = 0;
+  for (int i = 0; i <= 1000; ++i) slope = std::max(slope, std::abs(evaluate_polynomial(derivative, i / 1000.0)));
+  return slope;
+}
+
+namespace {
+
+constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
 
 // Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples
 // (the well-conditioned basis), then the monomial coefficients of the sum.
@@ -91,7 +98,7 @@ TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double
   }
   auto max_error = [&](const std::vector<double>& c) {
     double e = 0;
-    for (int i = 0; i < kChecks; ++i) e = std::max(e, std::abs(evaluate(c, check_mu[i]) - check_value[i]));
+    for (int i = 0; i < kChecks; ++i) e = std::max(e, std::abs(evaluate_polynomial(c, check_mu[i]) - check_value[i]));
     return e;
   };
   TransmittancePolynomial best;

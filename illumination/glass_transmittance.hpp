@@ -34,6 +34,12 @@ struct TransmittancePolynomial {
   std::vector<double> coefficients;
   double max_error = 0;  // max over μ ∈ [0, 1] of |Σ c_k μ^k − T(μ)|
 };
+// Σ_k c_k μ^k by Horner's rule.
+double evaluate_polynomial(const std::vector<double>& c, double mu) noexcept;
+
+// Largest |d/dμ Σ c_k μ^k| on [0, 1], on 1,001 points: how much T changes across the sun's disk.
+double max_slope(const std::vector<double>& c);
+
 TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double tolerance = 2e-5);
 
 }  // namespace daylit

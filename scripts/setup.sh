@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libcgal-dev libgmp-dev libmpfr-dev   # exact geometry (CGAL over GMP rationals), correct rounding
+  libgsl-dev                           # the Clausen integral; adaptive Gauss–Kronrod quadrature
   libtbb-dev                           # threads
   libopenimageio-dev fonts-dejavu-core # falsecolour images and their legends
   libcli11-dev nlohmann-json3-dev libfmt-dev

@@ -4,6 +4,12 @@
 #include <numbers>
 #include <string>
 
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#include <algorithm>
+#include <memory>
+
 #include "geometry/error.hpp"
 #include "illumination/hemisphere_clip.hpp"
 #include "illumination/least_squares.hpp"
@@ -163,7 +169,7 @@ SphericalRegion sky_hemisphere() {
 }
 
 CieQuadrature cie_sky_irradiance_quadrature(const CieSky& sky, const SphericalRegion& region, const Vec3& n,
-                                            double tolerance) {
+                                            double tolerance, const std::function<double(const Vec3&)>& transmittance) {
   // Fan triangles, each split at the sun when it holds it, so that the indicatrix's kink sits on
   // a vertex, where the cubature's refinement converges fastest.
   SphericalRegion triangles;
@@ -184,8 +190,116 @@ CieQuadrature cie_sky_irradiance_quadrature(const CieSky& sky, const SphericalRe
       }
     }
   const QuadratureResult q = integrate_over_region(
-      triangles, [&](const Vec3& u) { return sky.relative_luminance(u) * std::max(0.0, dot(n, u)); }, tolerance);
+      triangles,
+      [&](const Vec3& u) {
+        const double l = sky.relative_luminance(u) * std::max(0.0, dot(n, u));
+        return transmittance ? l * transmittance(u) : l;
+      },
+      tolerance);
   return {q.value, q.error_estimate, q.evaluations};
+}
+
+namespace {
+
+// Adaptive Gauss–Kronrod (21 points) with breakpoints, on a GSL workspace owned here.
+class Qagp {
+ public:
+  Qagp() : workspace_(gsl_integration_workspace_alloc(kIntervals), gsl_integration_workspace_free) {
+    if (!workspace_) throw std::bad_alloc();
+  }
+  // ∫ f over [points.front(), points.back()] with the inner points as breakpoints.
+  template <class F>
+  std::pair<double, double> integrate(F& f, std::vector<double> points, double relative, double absolute) {
+    gsl_function g{[](double x, void* p) { return (*static_cast<F*>(p))(x); }, &f};
+    double value = 0, error = 0;
+    status_ = gsl_integration_qagp(&g, points.data(), points.size(), absolute, relative, kIntervals, workspace_.get(),
+                                   &value, &error);
+    return {value, error};
+  }
+  int status() const noexcept { return status_; }
+
+ private:
+  static constexpr std::size_t kIntervals = 2000;
+  std::unique_ptr<gsl_integration_workspace, void (*)(gsl_integration_workspace*)> workspace_;
+  int status_ = 0;
+};
+
+// The θ ∈ [0, σ] along the meridian u(θ) = cos θ L + sin θ e where c·u ≥ 0 for every c given:
+// c·u = A cos θ + B sin θ vanishes at θ = atan2(A, −B) + kπ, so within [0, σ] (σ ≤ π) each
+// constraint changes sign at most twice; the pieces between the crossings are tested at their
+// midpoints. Returns false when nothing is left.
+bool meridian_interval(const Vec3& L, const Vec3& e, double sigma, const std::array<Vec3, 2>& constraints, double& lo,
+                       double& hi) {
+  std::vector<double> cuts{0, sigma};
+  for (const Vec3& c : constraints) {
+    const double A = dot(c, L), B = dot(c, e);
+    const double root = std::atan2(A, -B);  // A cos θ + B sin θ = 0
+    for (double t : {root - pi, root, root + pi, root + 2 * pi})
+      if (t > 0 && t < sigma) cuts.push_back(t);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  lo = hi = 0;
+  bool found = false;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+    const Vec3 u = std::cos(mid) * L + std::sin(mid) * e;
+    if (std::all_of(constraints.begin(), constraints.end(), [&](const Vec3& c) { return dot(c, u) >= 0; })) {
+      // Pieces that pass are contiguous (an intersection of arcs shorter than π on the meridian).
+      if (!found) lo = cuts[i];
+      hi = cuts[i + 1];
+      found = true;
+    }
+  }
+  return found && hi > lo;
+}
+
+}  // namespace
+
+CieQuadrature cie_sky_irradiance_over_cap(const CieSky& sky, const Vec3& cap_axis, double half_angle, const Vec3& n,
+                                          double tolerance) {
+  static const bool handler_off = [] {
+    gsl_set_error_handler_off();  // errors come back as status codes, never abort()
+    return true;
+  }();
+  (void)handler_off;
+  const Vec3 L = normalized(cap_axis);
+  // An orthonormal frame (e1, e2) about L, from the axis L is least aligned with.
+  const Vec3 helper = std::abs(L.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 e1 = normalized(cross(helper, L)), e2 = cross(L, e1);
+  const std::array<Vec3, 2> constraints{Vec3{0, 0, 1}, n};
+  const double sun_theta = std::atan2(norm(cross(sky.sun, L)), dot(sky.sun, L));
+  const double sun_phi = std::atan2(dot(sky.sun, e2), dot(sky.sun, e1));
+  long evaluations = 0;
+  double inner_error = 0;
+  int status = 0;
+  Qagp outer, inner;
+  auto integrand_phi = [&](double phi) {
+    const Vec3 e = std::cos(phi) * e1 + std::sin(phi) * e2;
+    double lo, hi;
+    if (!meridian_interval(L, e, half_angle, constraints, lo, hi)) return 0.0;
+    auto integrand_theta = [&](double theta) {
+      ++evaluations;
+      const Vec3 u = std::cos(theta) * L + std::sin(theta) * e;
+      return std::sin(theta) * sky.relative_luminance(u) * std::max(0.0, dot(n, u));
+    };
+    std::vector<double> points{lo};
+    // The sun's nearest approach on this meridian: where the indicatrix bends most.
+    const double nearest = std::atan2(dot(sky.sun, e), dot(sky.sun, L));
+    if (nearest > lo && nearest < hi) points.push_back(nearest);
+    points.push_back(hi);
+    const auto [value, error] = inner.integrate(integrand_theta, points, 0.1 * tolerance, 1e-300);
+    inner_error += error;
+    if (inner.status()) status = inner.status();
+    return value;
+  };
+  std::vector<double> points{-pi};
+  if (sun_theta > 1e-12 && sun_theta < half_angle && sun_phi > -pi && sun_phi < pi) points.push_back(sun_phi);
+  points.push_back(pi);
+  const auto [value, error] = outer.integrate(integrand_phi, points, tolerance, 1e-300);
+  if (outer.status()) status = outer.status();
+  if (status && !(error <= 10 * tolerance * std::abs(value)))
+    throw Error(std::string("the cap's quadrature did not converge (GSL: ") + gsl_strerror(status) + ")");
+  return {value, error, evaluations};
 }
 
 }  // namespace daylit

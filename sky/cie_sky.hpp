@@ -6,6 +6,7 @@
 // Frame: x east, y north, z up; the sun is a unit vector s (its zenith angle Z_s = acos s_z).
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "geometry/spherical_region.hpp"
@@ -56,8 +57,20 @@ struct CieQuadrature {
   double value, error_estimate;
   long evaluations;
 };
+// `transmittance`, when given, weighs each direction (glazing's T at the cosine of incidence).
 CieQuadrature cie_sky_irradiance_quadrature(const CieSky& sky, const SphericalRegion& region, const Vec3& n,
-                                            double tolerance);
+                                            double tolerance,
+                                            const std::function<double(const Vec3&)>& transmittance = {});
+
+// E/L_z over the part of the spherical cap {u : L·u ≥ cos σ} (L = cap_axis, any non-zero vector;
+// σ = half_angle ∈ (0, π]) above the horizon and in front of the receiver (normal n, unit):
+// nested adaptive Gauss–Kronrod quadrature (GSL's QAGP) in polar coordinates about L, the inner
+// integral over θ ∈ [0, σ] cut exactly to where z ≥ 0 and n·u ≥ 0 (each a single interval, found
+// in closed form), with breakpoints at the sun's nearest approach in both variables. The reference
+// for cap regions (Snyder's sources, the sun's disk), whose fit moments have no closed form here.
+// Throws daylit::Error when GSL cannot reach the tolerance.
+CieQuadrature cie_sky_irradiance_over_cap(const CieSky& sky, const Vec3& cap_axis, double half_angle, const Vec3& n,
+                                          double tolerance);
 
 // The part of a region above the horizon and in front of a receiver with normal n.
 SphericalRegion above_horizon_and_in_front(const SphericalRegion& region, const Vec3& n);

@@ -584,6 +584,7 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
   }
   // L ≤ 1 in the units of unobstructed_horizontal_irradiance (L_z for the overcast sky), cosines
   // and transmittances ≤ 1.
+  out.left_out_solid_angle_sr = solid_angle_sum;
   out.sc_change_bound_percent = 100 * solid_angle_sum / unobstructed_horizontal_irradiance(sky);
   out.notices.push_back(fmt::format(
       "{}: {} building{} read, {} placed ({} faces); left out: {} holding the model, {} below the horizon, {} behind "

@@ -98,6 +98,10 @@ struct ContextPlacement {
   // Upper bound on the change of the sky component (percent) at any sensor caused by the buildings
   // left out as too small: 100 Σ_buildings Σ_apertures 2π(1 − cos α) L_max / E_h.
   double sc_change_bound_percent = 0;
+  // Σ_buildings Σ_apertures 2π(1 − cos α) over the buildings left out as too small: an upper
+  // bound on the solid angle they could hide from any sensor (for bounds under other skies and
+  // for the sun).
+  double left_out_solid_angle_sr = 0;
   std::string rule;  // the rules in words, for the summary
   std::vector<std::string> notices;
 };

@@ -5,11 +5,13 @@
 
 namespace daylit {
 
-GridStatistics grid_statistics(const std::vector<double>& df_percent) {
+GridStatistics grid_statistics(const std::vector<double>& values, const std::vector<double>& thresholds) {
   GridStatistics s;
-  s.count = df_percent.size();
+  s.thresholds = thresholds;
+  s.share_at_or_above.assign(thresholds.size(), 0.0);
+  s.count = values.size();
   if (s.count == 0) return s;
-  std::vector<double> sorted = df_percent;
+  std::vector<double> sorted = values;
   std::sort(sorted.begin(), sorted.end());
   s.min = sorted.front();
   s.max = sorted.back();
@@ -18,8 +20,8 @@ GridStatistics grid_statistics(const std::vector<double>& df_percent) {
   s.median = s.count % 2 ? sorted[h] : 0.5 * (sorted[h - 1] + sorted[h]);
   s.min_over_mean = s.mean > 0 ? s.min / s.mean : 0;
   s.min_over_median = s.median > 0 ? s.min / s.median : 0;
-  for (std::size_t t = 0; t < GridStatistics::kThresholds.size(); ++t) {
-    const auto first = std::lower_bound(sorted.begin(), sorted.end(), GridStatistics::kThresholds[t]);
+  for (std::size_t t = 0; t < thresholds.size(); ++t) {
+    const auto first = std::lower_bound(sorted.begin(), sorted.end(), thresholds[t]);
     s.share_at_or_above[t] = double(sorted.end() - first) / double(s.count);
   }
   return s;

@@ -1,0 +1,83 @@
+#include "cli/model_inputs.hpp"
+
+#include "geometry/error.hpp"
+
+namespace daylit::cli {
+
+ModelInputs load_model(const ModelFiles& files, SkyModel sky) {
+  if (!files.context.empty() && files.site.empty())
+    throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
+  ModelInputs in;
+  in.scene = load_scene(files.scene_files, files.aperture_files);
+  if (in.scene.apertures.empty())
+    throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
+  for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
+  if (!files.site.empty()) {
+    in.site = read_site_file(files.site);
+    in.scene.notices.push_back("site " + files.site + ": " + in.site->description());
+  }
+  if (!files.context.empty()) {
+    const ContextBuildings buildings = read_context_buildings(files.context, *in.site);
+    in.scene.notices.insert(in.scene.notices.end(), buildings.notices.begin(), buildings.notices.end());
+    in.context = place_context_buildings(buildings, in.grids, sky, files.context_min_angle_deg, in.scene);
+    in.scene.notices.insert(in.scene.notices.end(), in.context->notices.begin(), in.context->notices.end());
+  }
+  return in;
+}
+
+nlohmann::json site_json(const Site& site, const std::string& path) {
+  const GeographicPosition& o = site.origin();
+  nlohmann::json j = {{"path", path},
+                      {"latitude_deg", o.latitude_deg},
+                      {"longitude_deg", o.longitude_deg},
+                      {"elevation_m", o.height_m},
+                      {"north_deg", site.north_deg()},
+                      {"ground_z_m", site.ground_z_m()}};
+  if (const auto& utm = site.utm_grid())
+    j["utm"] = {{"zone", utm->zone},
+                {"northern", utm->northern},
+                {"origin_easting_m", utm->origin_easting_m},
+                {"origin_northing_m", utm->origin_northing_m},
+                {"meridian_convergence_deg", utm->convergence_deg}};
+  return j;
+}
+
+nlohmann::json context_json(const ContextPlacement& context, const std::string& path) {
+  return {{"path", path},
+          {"buildings_read", context.read},
+          {"placed", context.placed},
+          {"faces", context.faces},
+          {"left_out",
+           {{"holding_the_model", context.enclosing_model},
+            {"below_the_horizon", context.below_horizon},
+            {"behind_the_apertures", context.behind_apertures},
+            {"smaller_than_min_angle", context.too_small}}},
+          {"min_angle_deg", context.min_angular_size_deg},
+          {"sc_change_bound_percent", context.sc_change_bound_percent},
+          {"rule", context.rule}};
+}
+
+nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine) {
+  return {{"occluders", scene.occluders.size()},
+          {"occluder_pieces", engine.occluder_piece_count()},
+          {"apertures", scene.apertures.size()},
+          {"aperture_pieces", engine.aperture_piece_count()},
+          {"notices", scene.notices}};
+}
+
+nlohmann::json counters_json(const VisibilityCounters& c) {
+  return {
+      {"sensor_aperture_pairs", c.pairs},
+      {"pairs_not_facing", c.pairs_not_facing},
+      {"pairs_without_clipping", c.pairs_unobstructed + c.pairs_not_facing},
+      {"pairs_unobstructed", c.pairs_unobstructed},
+      {"pairs_clipped", c.pairs_clipped},
+      {"pairs_clipped_in_certified_intervals", c.pairs_clipped - c.pairs_rational},
+      {"pairs_needing_exact_rationals", c.pairs_rational},
+      {"occluder_pieces_culled_by_boxes", c.occluders_box_culled},
+      {"occluder_pieces_tested_exactly", c.occluders_tested},
+      {"occluder_pieces_clipped", c.occluders_clipped},
+  };
+}
+
+}  // namespace daylit::cli

@@ -1,0 +1,43 @@
+#pragma once
+// What `daylit df` and `daylit illuminance` both read: the scene, its apertures, the sensor grids,
+// and optionally the site and the context buildings placed around the model; and the summary
+// sections that describe them.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/scene.hpp"
+#include "geometry/sensor_grid.hpp"
+#include "geometry/visibility.hpp"
+#include "sky/context_buildings.hpp"
+#include "sky/site.hpp"
+#include "sky/sky_model.hpp"
+
+namespace daylit::cli {
+
+struct ModelFiles {
+  std::vector<std::string> scene_files, aperture_files, grid_files;
+  std::string site, context;
+  double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
+};
+
+struct ModelInputs {
+  Scene scene;
+  std::vector<SensorGrid> grids;
+  std::optional<Site> site;
+  std::optional<ContextPlacement> context;
+};
+
+// Reads everything and places the context buildings (their bound on what leaving some out changes
+// is stated for `sky`). Throws daylit::Error naming the file and line of bad input.
+ModelInputs load_model(const ModelFiles& files, SkyModel sky);
+
+nlohmann::json site_json(const Site& site, const std::string& path);
+nlohmann::json context_json(const ContextPlacement& context, const std::string& path);
+nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine);
+nlohmann::json counters_json(const VisibilityCounters& c);
+
+}  // namespace daylit::cli

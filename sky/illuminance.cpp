@@ -1,0 +1,157 @@
+#include "sky/illuminance.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <string>
+
+#include "geometry/error.hpp"
+#include "illumination/cap_clip.hpp"
+#include "illumination/glass_transmittance.hpp"
+#include "illumination/moments.hpp"
+
+namespace daylit {
+
+namespace {
+
+struct SensorIlluminance {
+  double sky = 0, sun = 0, sky_error = 0;
+  long evaluations = 0;
+  std::size_t regions_by_quadrature = 0;
+};
+
+// The pane's unit normal turned towards the directions of `region` (T depends on |a·u| only, but
+// the closed forms want a·u ≥ 0 over the region).
+Vec3 pane_normal_facing(const Aperture& aperture, const SphericalRegion& region) {
+  Vec3 a = normalized(newell_normal(aperture.polygon.vertices));
+  Vec3 inside{};
+  for (const Vec3& u : region.loops.front()) inside += normalized(u);
+  return dot(a, inside) < 0 ? -1.0 * a : a;
+}
+
+// E/L_z from the sky seen in `region` through `aperture`, with a bound on its error.
+void add_sky(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n,
+             SensorIlluminance& out) {
+  const bool glazed = !aperture.angular_transmittance.empty();
+  if (c.sky != DaylightConditions::Sky::cie_general) {
+    const SkyModel model = c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast;
+    out.sky += glazed ? sky_irradiance_through_glazing(region, n, model, pane_normal_facing(aperture, region),
+                                                       aperture.angular_transmittance)
+                      : aperture.transmittance * sky_irradiance(region, n, model);
+    return;
+  }
+  if (glazed || c.method == DaylightConditions::Method::quadrature) {
+    std::function<double(const Vec3&)> transmittance;
+    if (glazed) {
+      const Vec3 a = normalized(newell_normal(aperture.polygon.vertices));
+      transmittance = [&aperture, a](const Vec3& u) {
+        return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
+      };
+    }
+    const CieQuadrature q = cie_sky_irradiance_quadrature(*c.cie, region, n, c.quadrature_tolerance, transmittance);
+    const double scale = glazed ? 1.0 : aperture.transmittance;
+    out.sky += scale * q.value;
+    out.sky_error += scale * q.error_estimate;
+    out.evaluations += q.evaluations;
+    out.regions_by_quadrature += glazed && c.method == DaylightConditions::Method::fit;
+    return;
+  }
+  // |fit − L/L_z| ≤ max_error on the hemisphere, so the integral against (n·u) ≥ 0 is off by at
+  // most max_error · ∫_A (n·u) dσ.
+  out.sky += aperture.transmittance * cie_sky_irradiance(*c.fit, c.cie->sun, region, n);
+  out.sky_error += aperture.transmittance * c.fit->max_error * lambert(region, n);
+}
+
+// Direct sunlight through `aperture`: the disk's radiance L_s = E_dn / (π sin²ρ) (a uniform disk of
+// angular radius ρ gives E_dn on a surface facing it: Snyder 1996, eq. 6 with the receiver on the
+// axis) times ∫ over the visible part of the disk of (n·u) dσ, in closed form (cap_clip.hpp).
+double sun_through(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n) {
+  const double visible = cap_lambert(region, c.sun, c.sun_half_angle, n);
+  if (visible == 0) return 0;
+  const double sin_rho = std::sin(c.sun_half_angle);
+  const double radiance = c.direct_normal / (std::numbers::pi * sin_rho * sin_rho);
+  const double t = aperture.angular_transmittance.empty()
+                       ? aperture.transmittance
+                       : evaluate_polynomial(aperture.angular_transmittance,
+                                             std::abs(dot(normalized(newell_normal(aperture.polygon.vertices)), c.sun)));
+  return t * radiance * visible;
+}
+
+SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
+                                     const DaylightConditions& c, VisibilityCounters& counters) {
+  SensorIlluminance out;
+  for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
+    const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
+    if (region.empty()) continue;
+    add_sky(c, scene.apertures[a], region, sensor.normal, out);
+    if (c.has_sun()) out.sun += sun_through(c, scene.apertures[a], region, sensor.normal);
+  }
+  out.sky *= c.zenith_luminance;
+  out.sky_error *= c.zenith_luminance;
+  if (!std::isfinite(out.sky) || !std::isfinite(out.sun))
+    throw Error("non-finite illuminance at sensor (" + std::to_string(sensor.position.x) + ", " +
+                std::to_string(sensor.position.y) + ", " + std::to_string(sensor.position.z) +
+                ") with float geometry; use --geometry exact");
+  return out;
+}
+
+}  // namespace
+
+double unobstructed_sky_irradiance(const DaylightConditions& c) {
+  switch (c.sky) {
+    case DaylightConditions::Sky::uniform: return unobstructed_horizontal_irradiance(SkyModel::uniform);
+    case DaylightConditions::Sky::cie_overcast: return unobstructed_horizontal_irradiance(SkyModel::cie_overcast);
+    case DaylightConditions::Sky::cie_general: break;
+  }
+  return cie_sky_irradiance_quadrature(*c.cie, sky_hemisphere(), {0, 0, 1}, 1e-12).value;
+}
+
+IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
+                              const DaylightConditions& conditions, const ProgressCallback& progress) {
+  if (conditions.sky == DaylightConditions::Sky::cie_general &&
+      (!conditions.cie || (conditions.method == DaylightConditions::Method::fit && !conditions.fit)))
+    throw Error("a CIE general sky needs its type and sun (and its fit for the fit method)");
+  IlluminanceResult result;
+  const std::size_t count = grid.sensors.size();
+  result.sky_lux.assign(count, 0.0);
+  result.sun_lux.assign(count, 0.0);
+  result.sky_error_lux.assign(count, 0.0);
+  struct Local {
+    VisibilityCounters counters;
+    long evaluations = 0;
+    std::size_t regions_by_quadrature = 0;
+  };
+  tbb::enumerable_thread_specific<Local> locals;
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16), [&](const tbb::blocked_range<std::size_t>& range) {
+    Local& local = locals.local();
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const SensorIlluminance s = sensor_illuminance(engine, scene, grid.sensors[i], conditions, local.counters);
+      result.sky_lux[i] = s.sky;
+      result.sun_lux[i] = s.sun;
+      result.sky_error_lux[i] = s.sky_error;
+      local.evaluations += s.evaluations;
+      local.regions_by_quadrature += s.regions_by_quadrature;
+    }
+    const std::size_t now = done += range.size();
+    if (progress) {
+      std::unique_lock lock(progress_mutex, std::try_to_lock);
+      if (lock) progress(now);
+    }
+  });
+  for (const Local& l : locals) {
+    result.counters += l.counters;
+    result.quadrature_evaluations += l.evaluations;
+    result.regions_by_quadrature += l.regions_by_quadrature;
+  }
+  if (progress) progress(count);
+  return result;
+}
+
+}  // namespace daylit
