@@ -21,6 +21,8 @@ struct BenchOptions {
 int run_bench_scenes(const BenchOptions& options);
 // `daylit bench stiff`: exact and float geometry against independent references on stiff scenes.
 int run_bench_stiff(const BenchOptions& options);
+// `daylit bench skies`: the CIE general skies by the fit's closed forms and by cubature.
+int run_bench_skies(const BenchOptions& options);
 
 namespace bench {
 

@@ -35,7 +35,7 @@ constexpr double kDegree = std::numbers::pi / 180;
 
 struct IlluminanceOptions {
   ModelFiles files;
-  std::string sky = "cie-overcast", method = "fit";
+  std::string sky = "cie-overcast", method = "quadrature";
   double tolerance = 1e-9;
   double zenith_luminance = 0, diffuse_horizontal = 0, direct_normal = 0;
   std::string time;
@@ -333,9 +333,9 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   cmd->description(
       "Computes the illuminance at every sensor from the sky and the sun seen through the apertures, each\n"
       "aperture clipped exactly against the occluders as seen from the sensor. Skies: uniform, cie-overcast\n"
-      "(exact closed forms), and the fifteen CIE general skies cie-1 ... cie-15 (ISO 15469), integrated by the\n"
-      "closed forms of a fit of their luminance (its error bound is reported per sensor) or by adaptive\n"
-      "cubature. The sun is a uniform disk 0.533 degrees across, cut exactly by what each sensor sees, scaled\n"
+      "(exact closed forms), and the fifteen CIE general skies cie-1 ... cie-15 (ISO 15469), integrated by\n"
+      "adaptive cubature of the standard's formula or by the closed forms of a fit of their luminance (its\n"
+      "error bound is reported per sensor). The sun is a uniform disk 0.533 degrees across, cut exactly by what each sensor sees, scaled\n"
       "by --direct-normal. Its position: --time and --site (NREL SPA), or --sun-zenith and --sun-azimuth.\n"
       "Externally and internally reflected light is not computed.");
   auto& f = opt->files;
@@ -355,8 +355,9 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
           },
           "SKY"));
   cmd->add_option("--sky-method", opt->method,
-                  "CIE general skies: fit (closed forms of a fitted luminance; default) or quadrature (adaptive cubature "
-                  "of the standard's formula: the reference)")
+                  "CIE general skies: quadrature (adaptive cubature of the standard's formula over each visible region; "
+                  "default) or fit (closed forms of a fitted luminance, with a bound per sensor; slower here, see `daylit "
+                  "bench skies`)")
       ->check(CLI::IsMember({"fit", "quadrature"}));
   cmd->add_option("--tolerance", opt->tolerance, "Relative tolerance of the cubature (default 1e-9)")
       ->check(CLI::Range(1e-14, 1e-2));

@@ -29,7 +29,7 @@ struct DaylightConditions {
   Sky sky = Sky::cie_overcast;
   std::optional<CieSky> cie;      // cie_general: the type and the sun it is drawn for
   std::optional<CieSkyFit> fit;   // cie_general with Method::fit
-  Method method = Method::fit;
+  Method method = Method::quadrature;
   double quadrature_tolerance = 1e-9;  // relative, per region (spherical_quadrature.hpp)
   double zenith_luminance = 0;         // L_z, cd/m² (the uniform sky's luminance)
   // The sun: unit vector in the model frame, and its direct normal illuminance (lux); no sun when

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
-# Then `bench scenes --quick` and `bench stiff --quick` (below).
+# Then `bench scenes --quick`, `bench stiff --quick` and `bench skies --quick` (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -106,6 +106,18 @@ stiff=$out/stiff.csv
 [ "$(tail -n +2 "$stiff" | wc -l)" -ge 20 ] || fail "fewer than 20 stiff cases"
 report=$(awk -F, 'NR > 1 && !($5 <= $8) { print "exact off by " $5 " (tolerance " $8 ") in " $1 }' "$stiff")
 [ -z "$report" ] || fail "$report"
+
+# `daylit bench skies --quick`: both paths on two skies, with finite errors; the cubature at its
+# tighter tolerance (1e-8) within 1e-6 of the 1e-13 reference.
+start=$SECONDS
+"$daylit" bench skies --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench skies: exit status $?"
+echo "bench skies --quick: $((SECONDS - start)) s"
+skies=$out/skies_error_vs_time.csv
+[ -s "$out/skies_error_vs_time.png" ] || fail "no skies plot"
+[ "$(awk -F, 'NR > 1 && $3 == "fit" && $6 ~ /^[0-9.e+-]+$/' "$skies" | wc -l)" -eq 2 ] || fail "skies: not 2 fit rows"
+report=$(awk -F, 'NR > 1 && $3 == "cubature" && $4 == 1e-08 && !($6 <= 1e-6) { print "cubature off by " $6 " on type " $1 }' "$skies")
+[ -z "$report" ] || fail "$report"
+[ "$(tail -n +2 "$out/skies_e_out.csv" | wc -l)" -eq 2 ] || fail "skies: E_out rows"
 
 echo "$failures failures"
 [ "$failures" -eq 0 ]
