@@ -518,7 +518,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Error against run time of approximate paths beside the exact ones");
   bench->footer(
       "Measures each approximate path beside the exact one on the same cases and writes the results as CSV\n"
-      "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff, skies.");
+      "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff, skies, rational.");
   bench->require_subcommand(1);
 
   // Each suite: a subcommand with the common options and its runner (bench_suites.hpp).
@@ -570,6 +570,15 @@ std::function<int()> add_bench_command(CLI::App& app) {
             run_bench_skies);
   suites->back().command->add_option("--samples", suites->back().options->samples,
                                      "Folder holding the bundled sample office/ (default: samples)");
+  add_suite("rational", "Rational moments: Cl2 by GSL, Grosjean and a table; exact O(n^2) and semi-analytic paths",
+            "Cl2 by GSL, Grosjean's formula and a long double series, and Chen and Arvo's Lambda by eq. 36 with each\n"
+            "and by a tabulated Lambda' (100, 300, 1000 nodes a side), against __float128 references on seeded random\n"
+            "arguments; tau^{n,1,1;1} for n = 1 ... 1000 on 4- and 16-edge luminaires by the exact O(n^2) path and by\n"
+            "Gauss-Legendre quadrature of T3 (4 ... 128 nodes), with adaptive cubature as the 2-D baseline; and\n"
+            "polynomial luminaires of degree 0 ... 16 on stress geometries (estimate, kappa of the double pass,\n"
+            "precision). Writes rational_special_functions.csv/.png, rational_moments_error_vs_time.csv/.png,\n"
+            "rational_cost_per_edge.png and rational_luminaire_degree.csv. One core; --quick: a few seconds.",
+            run_bench_rational);
   return [suites] {
     for (const Suite& s : *suites)
       if (s.command->parsed()) return s.run(*s.options);

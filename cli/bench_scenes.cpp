@@ -39,9 +39,9 @@
 #include "cli/bench_suites.hpp"
 #include "cli/plot.hpp"
 #include "cli/progress_bar.hpp"
-#include "cli/sky_baselines.hpp"
 #include "cli/staged_output.hpp"
 #include "geometry/error.hpp"
+#include "sky/sky_baselines.hpp"
 #include "sky/sky_component.hpp"
 
 namespace daylit::cli {

@@ -23,6 +23,9 @@ int run_bench_scenes(const BenchOptions& options);
 int run_bench_stiff(const BenchOptions& options);
 // `daylit bench skies`: the CIE general skies by the fit's closed forms and by cubature.
 int run_bench_skies(const BenchOptions& options);
+// `daylit bench rational`: Cl2 and Λ by GSL, Grosjean and a table; rational moments exact and
+// semi-analytic; polynomial luminaires by degree.
+int run_bench_rational(const BenchOptions& options);
 
 namespace bench {
 

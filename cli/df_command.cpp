@@ -30,6 +30,8 @@ struct DfOptions {
   std::string out, summary, image;
   int threads = 0;
   bool quiet = false;
+  bool gradient = false, refine = false;
+  double refine_tolerance = 0.01;  // DF percentage points of a cell's mean
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -58,13 +60,17 @@ int run_df(const DfOptions& opt) {
   for (const auto& grid : grids) {
     const auto tg = std::chrono::steady_clock::now();
     ProgressBar bar("df " + grid.name, grid.sensors.size(), show_progress);
-    SkyComponentResult sc = sky_component(engine, scene, grid, sky, [&](std::size_t done) { bar.update(done); });
+    const bool gradient = opt.gradient || opt.refine;
+    SkyComponentResult sc = sky_component(engine, scene, grid, sky, [&](std::size_t done) { bar.update(done); }, gradient);
     GridReport r;
     r.grid = &grid;
     r.sc_percent = sc.sc_percent;
     r.df_percent = std::move(sc.sc_percent);  // DF = SC: the components computed in this run
+    r.df_gradient = std::move(sc.sc_gradient);
     r.statistics = grid_statistics(r.df_percent);
     r.counters = sc.counters;
+    if (opt.refine)
+      r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters);
     r.run_time_s = seconds_since(tg);
     reports.push_back(std::move(r));
   }
@@ -102,6 +108,20 @@ int run_df(const DfOptions& opt) {
                                 {"share_at_or_above_df_percent", shares},
                                 {"run_time_s", r.run_time_s},
                                 {"left_out", counters_json(r.counters)}});
+    if (r.refinement) {
+      const GridRefinement& f = *r.refinement;
+      summary["grids"].back()["refinement"] = {
+          {"estimator",
+           "midpoint-rule error of each cell's mean, (w^2/24)(H11 + H22), H from the exact DF gradients of the "
+           "neighbouring sensors (Holzschuch and Sillion 1995, section 3.2); cells: squares of side w, the nearest-"
+           "neighbour spacing in the sensor's plane; means weighted by cell area"},
+          {"tolerance_df_percent", f.tolerance},
+          {"cells_split", f.cells_split},
+          {"sensors_added", f.added.size()},
+          {"cells_without_neighbours", f.cells_without_neighbours},
+          {"mean_df_percent", {{"before", f.mean_before}, {"after", f.mean_after}}},
+          {"estimated_error_of_mean_df_percent", {{"before", f.error_before}, {"after", f.error_after}}}};
+    }
   }
   summary["run_time_s"] = seconds_since(t0);
   if (!opt.summary.empty()) {
@@ -112,10 +132,16 @@ int run_df(const DfOptions& opt) {
   outputs.commit();
   if (opt.out.empty()) write_csv(stdout, reports);
   if (!opt.quiet)
-    for (const auto& r : reports)
+    for (const auto& r : reports) {
       std::cerr << fmt::format("{}: {} sensors, mean DF {:.3f} %, median {:.3f} %, min {:.3f} %, max {:.3f} % ({:.2f} s)\n",
                                r.grid->name, r.statistics.count, r.statistics.mean, r.statistics.median,
                                r.statistics.min, r.statistics.max, r.run_time_s);
+      if (const auto& f = r.refinement)
+        std::cerr << fmt::format("{}: refined {} of {} cells (+{} sensors): mean DF {:.6f} % -> {:.6f} %, estimated error of "
+                                 "the mean {:.3g} % -> {:.3g} %\n",
+                                 r.grid->name, f->cells_split, r.statistics.count, f->added.size(), f->mean_before,
+                                 f->mean_after, f->error_before, f->error_after);
+    }
   return 0;
 }
 
@@ -161,6 +187,17 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "Leave out context buildings whose angular size from every aperture is below this (degrees; default 0.1, "
                  "0: keep all that can be seen); the summary bounds the change it makes")
       ->check(CLI::Range(0.0, 179.0));
+  df->add_flag("--gradient", opt->gradient,
+               "Also the gradient of DF with respect to the sensor's position (exact: the boundary term of Arvo's irradiance "
+               "Jacobian, occluder edges included): CSV columns ddf_dx, ddf_dy, ddf_dz in % per model unit");
+  df->add_flag("--refine", opt->refine,
+               "Split the cells of the grid where the gradients say it is too coarse (Holzschuch-Sillion 3.2): each sensor's "
+               "cell is a square of its nearest-neighbour spacing; cells whose estimated error of the mean exceeds "
+               "--refine-tolerance get 2x2 new sensors (CSV columns added, cell_area; implies --gradient); the summary and "
+               "stderr give the estimated error of the grid's mean DF before and after");
+  df->add_option("--refine-tolerance", opt->refine_tolerance,
+                 "Estimated error of a cell's mean DF above which --refine splits it (DF percentage points; default 0.01)")
+      ->check(CLI::PositiveNumber);
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_df(*opt); };
 }

@@ -7,14 +7,30 @@
 namespace daylit::cli {
 
 void write_csv(std::FILE* out, const std::vector<GridReport>& reports) {
-  fmt::print(out, "grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent\n");
+  const bool gradient = !reports.empty() && !reports.front().df_gradient.empty();
+  const bool refined = !reports.empty() && reports.front().refinement.has_value();
+  fmt::print(out, "grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent{}{}\n", gradient ? ",ddf_dx,ddf_dy,ddf_dz" : "",
+             refined ? ",added,cell_area" : "");
+  // 17 significant digits: the values round-trip, so exactness is not lost in the file.
+  const auto row = [&](const GridReport& r, std::size_t index, const Sensor& s, double sc, double df, const Vec3* g,
+                       int added, double area) {
+    fmt::print(out, "{},{},{},{},{},{},{},{},{:.17g},{:.17g}", r.grid->name, index, s.position.x, s.position.y, s.position.z,
+               s.normal.x, s.normal.y, s.normal.z, sc, df);
+    if (gradient) fmt::print(out, ",{:.17g},{:.17g},{:.17g}", g->x, g->y, g->z);
+    if (refined) fmt::print(out, ",{},{:.17g}", added, area);
+    fmt::print(out, "\n");
+  };
   for (const auto& r : reports) {
     const auto& sensors = r.grid->sensors;
-    for (std::size_t i = 0; i < sensors.size(); ++i) {
-      const auto& s = sensors[i];
-      // 17 significant digits: the values round-trip, so exactness is not lost in the file.
-      fmt::print(out, "{},{},{},{},{},{},{},{},{:.17g},{:.17g}\n", r.grid->name, i, s.position.x, s.position.y,
-                 s.position.z, s.normal.x, s.normal.y, s.normal.z, r.sc_percent[i], r.df_percent[i]);
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      row(r, i, sensors[i], r.sc_percent[i], r.df_percent[i], gradient ? &r.df_gradient[i] : nullptr, 0,
+          refined ? r.refinement->cell_area[i] : 0);
+    if (refined) {
+      // The added sensors see only the sky component, as their parents: DF = SC.
+      const GridRefinement& f = *r.refinement;
+      for (std::size_t k = 0; k < f.added.size(); ++k)
+        row(r, sensors.size() + k, f.added[k], f.added_df[k], f.added_df[k], &f.added_gradient[k], 1,
+            f.cell_area[sensors.size() + k]);
     }
   }
 }

@@ -3,11 +3,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
+#include "sky/grid_refinement.hpp"
 #include "sky/grid_statistics.hpp"
 
 namespace daylit::cli {
@@ -24,9 +26,14 @@ struct GridReport {
   GridStatistics statistics;
   VisibilityCounters counters;
   double run_time_s = 0;
+  std::vector<Vec3> df_gradient;             // `df --gradient`: ∇DF per sensor (percent per model unit)
+  std::optional<GridRefinement> refinement;  // `df --refine`
 };
 
-// One row per sensor, grids in the order given: grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent.
+// One row per sensor, grids in the order given: grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent;
+// with gradients, ddf_dx,ddf_dy,ddf_dz; with refinement, added,cell_area, and the added sensors
+// after each grid's own (indices continuing; a split sensor's cell_area is 0). The columns are
+// those of the first report (df computes gradients and refinements for all grids or none).
 void write_csv(const std::string& path, const std::vector<GridReport>& reports);
 void write_csv(std::FILE* out, const std::vector<GridReport>& reports);
 

@@ -160,6 +160,9 @@ struct SignedValues {
   bool any_positive = false, any_negative = false;
 
   void push(FT v, int s) {
+    // One allocation each for the polygons buildings are made of, not four (malloc and free were
+    // 8 % of `daylit df` on the office).
+    if (value.empty()) value.reserve(8), sign.reserve(8);
     any_positive |= s > 0;
     any_negative |= s < 0;
     value.push_back(std::move(v));
@@ -169,9 +172,10 @@ struct SignedValues {
 
 // One step of Sutherland–Hodgman on a convex polygon: the part where side·f ≥ 0. New vertices
 // only where the sign strictly changes, so no duplicates arise; the edge that runs along the cut
-// is given the identity `cut`.
-template <class V, class FT>
-std::vector<V> keep_side(const std::vector<V>& poly, const SignedValues<FT>& f, int side, const LineId& cut) {
+// is given the identity `cut`. `refine(x, along, cut)` may replace the coordinates of a new
+// vertex x, interpolated on an edge of line `along`, by ones built afresh from the two lines.
+template <class V, class FT, class Refine>
+std::vector<V> keep_side(const std::vector<V>& poly, const SignedValues<FT>& f, int side, const LineId& cut, const Refine& refine) {
   std::vector<V> out;
   out.reserve(poly.size() + 1);
   const auto& s = f.sign;
@@ -184,11 +188,16 @@ std::vector<V> keep_side(const std::vector<V>& poly, const SignedValues<FT>& f, 
     }
     if (s[i] * s[j] < 0) {
       V x = interpolate(poly[i], poly[j], FT(f.value[i] / (f.value[i] - f.value[j])), cut);
+      refine(x, poly[i].out, cut);
       x.out = s[i] * side > 0 ? cut : poly[i].out;  // exit point: along the cut; entry: along the old edge
       out.push_back(std::move(x));
     }
   }
   return out;
+}
+template <class V, class FT>
+std::vector<V> keep_side(const std::vector<V>& poly, const SignedValues<FT>& f, int side, const LineId& cut) {
+  return keep_side(poly, f, side, cut, [](V&, const LineId&, const LineId&) {});
 }
 
 // Reverses a loop, keeping each edge identity on its edge (which now starts at its other end).
@@ -209,12 +218,14 @@ class ShadowClipper {
   // Symbolic reasoning belongs to the exact path; the float path decides everything in double.
   static constexpr bool kSymbolic = !std::is_same_v<FT, double>;
 
-  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh)
+  // `horizon`: cut to the directions above p's horizontal plane as well (skies; not luminaires).
+  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, bool horizon = true)
       : p_in_(p), n_in_(n), piece_(piece), sh_(sh), inside_(-sh), k_(piece.drop_axis), i_((k_ + 1) % 3),
-        j_((k_ + 2) % 3) {}
+        j_((k_ + 2) % 3), horizon_(horizon) {}
 
-  // Appends the visible part of the piece, as positively oriented loops, to `region`.
-  void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region) {
+  // Appends the visible part of the piece, as positively oriented loops, to `region`, and with
+  // `sources` the source of each of their edges to region.edge_sources.
+  void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region, bool sources = false) {
     const auto& wv = piece_.vertices;
     std::vector<Vertex3<FT>> w;
     for (std::size_t e = 0; e < wv.size(); ++e) {
@@ -238,7 +249,10 @@ class ShadowClipper {
       pieces = std::move(next);
       if (pieces.empty()) return;
     }
-    for (const auto& P : pieces) region.loops.push_back(directions(P));
+    for (const auto& P : pieces) {
+      region.loops.push_back(directions(P));
+      if (sources) region.edge_sources.push_back(edge_sources(P));
+    }
   }
 
  private:
@@ -275,7 +289,7 @@ class ShadowClipper {
     if (!front.any_positive) return false;
     if (front.any_negative) w = keep_side(w, front, +1, LineId::named(LineId::Kind::hemisphere));
     // For an upward receiver the two planes coincide.
-    if (n_in_.x == 0 && n_in_.y == 0) return true;
+    if (!horizon_ || (n_in_.x == 0 && n_in_.y == 0)) return true;
     SignedValues<FT> above;
     for (const V3& x : w) {
       FT value = x[2];
@@ -380,6 +394,42 @@ class ShadowClipper {
     });
   }
 
+  // Intervals only: the coordinates of x, a vertex of `blocker` clipped to the cone where the
+  // line `along` meets the plane of `cut`, built afresh from the input as the point of the
+  // blocker's plane on the line M_along × M_cut through p (as direction_from_input does for the
+  // aperture's plane). Interpolating from the endpoints of the edge instead chains every cut to
+  // the ones before: an edge along cone plane e cut by the nearly parallel plane e + 1 of a fine
+  // polygon (exterior angle 2π/k) widens the interval by about k/2π, and the vertex after it by
+  // as much again, so a 48-gon's cone left every occluder that covers it uncertain and sent all
+  // its pairs to rationals. Rebuilt, a vertex's interval is a few ulps over sin(angle between the
+  // planes) whatever the cuts before it. Left as interpolated where the line misses the plane in
+  // certainty (the rationals then decide, as before).
+  void rebuild_on(const ConvexPiece& blocker, V3& x, const LineId& along, const LineId& cut) const {
+    if constexpr (std::is_same_v<FT, Interval>) {
+      if (along.kind == LineId::Kind::unknown || cut.kind == LineId::Kind::unknown || same_line(along, cut)) return;
+      const auto a = plane_normal<Interval>(along), b = plane_normal<Interval>(cut);
+      const Vec d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      const auto& ov = blocker.vertices;
+      const Vec o = relative(ov[0]), ob = relative(ov[blocker.base_b]), oc = relative(ov[blocker.base_c]);
+      const Vec N = cross({ob[0] - o[0], ob[1] - o[1], ob[2] - o[2]}, {oc[0] - o[0], oc[1] - o[1], oc[2] - o[2]});
+      const Interval meet = dot(N, d);
+      if (!(meet.inf() > 0 || meet.sup() < 0)) return;
+      const Interval t = dot(N, o) / meet;
+      for (int c = 0; c < 3; ++c) {
+#ifdef DAYLIT_CHECK_SYMBOLIC
+        // Both intervals hold the exact vertex if the lines are right (fuzz builds check it).
+        if (!x.c[c].do_overlap(d[c] * t)) {
+          std::fprintf(stderr, "daylit: rebuilt vertex off its interpolated interval\n");
+          std::abort();
+        }
+#endif
+        x.c[c] = d[c] * t;
+      }
+    } else {
+      (void)blocker, (void)x, (void)along, (void)cut;
+    }
+  }
+
   // The blocker clipped to the cone over w and projected onto the aperture's plane, counter-
   // clockwise; nothing if it has no area there.
   std::optional<Shadow> shadow_of(const ConvexPiece& blocker, const std::vector<V3>& w) const {
@@ -400,7 +450,8 @@ class ShadowClipper {
         f.push(std::move(value), s);
       }
       if (!f.any_positive) return std::nullopt;
-      if (f.any_negative) o = keep_side(o, f, +1, LineId::cone(int(e)));
+      if (f.any_negative)
+        o = keep_side(o, f, +1, LineId::cone(int(e)), [&](V3& x, const LineId& along, const LineId& cut) { rebuild_on(blocker, x, along, cut); });
     }
     const auto& wv = piece_.vertices;
     const FT minus_h = dot(N_, w0_.c3());
@@ -537,6 +588,30 @@ class ShadowClipper {
     return d;
   }
 
+  // The 3-D line of each edge of a visible piece, in the order directions() gives its vertices:
+  // what gradients need (DESIGN.md §7). A segment is the aperture's when its endpoints are the
+  // piece's own vertices, else an occluder's; a cone line stands for the aperture edge it is on.
+  EdgeSourceLoop edge_sources(const std::vector<V2>& P) const {
+    const auto source = [&](LineId L) {
+      if (L.kind == LineId::Kind::cone) L = cone_lines_[std::size_t(L.cone_edge)];
+      switch (L.kind) {
+        case LineId::Kind::segment: {
+          const auto& wv = piece_.vertices;
+          const bool own = L.a >= wv.data() && L.a < wv.data() + wv.size();
+          return EdgeSource{own ? EdgeSource::Kind::aperture : EdgeSource::Kind::occluder, *L.a, *L.b};
+        }
+        case LineId::Kind::hemisphere: return EdgeSource{EdgeSource::Kind::receiver_plane};
+        case LineId::Kind::horizon: return EdgeSource{EdgeSource::Kind::horizon};
+        default: return EdgeSource{};
+      }
+    };
+    const std::size_t m = P.size();
+    EdgeSourceLoop out(m);
+    // Reversed with the loop (sh > 0): edge i of the reversed loop is edge m − 2 − i of P.
+    for (std::size_t q = 0; q < m; ++q) out[q] = source(P[sh_ > 0 ? (2 * m - 2 - q) % m : q].out);
+    return out;
+  }
+
   // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
   DirectionLoop directions(const std::vector<V2>& P) const {
     DirectionLoop loop;
@@ -566,6 +641,7 @@ class ShadowClipper {
   Vec3 p_in_, n_in_;
   const ConvexPiece& piece_;
   int sh_, inside_, k_, i_, j_;
+  bool horizon_;
     V3 w0_;
   Vec N_;
   std::vector<LineId> cone_lines_;  // the line of each edge of the clipped aperture piece

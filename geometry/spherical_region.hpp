@@ -3,6 +3,7 @@
 // kernels of illumination/ (DESIGN.md §2, step 5).
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "geometry/polygon.hpp"
@@ -17,12 +18,32 @@ namespace daylit {
 // (a·(b×c) > 0 for a convex loop); its signed solid angle is then positive.
 using DirectionLoop = std::vector<Vec3>;
 
+// Where an edge of a region comes from (DESIGN.md §7, "Gradients behind occluders"): every edge
+// lies in the plane through the receiver of a line fixed in the model. When the receiver moves,
+// the edges of an aperture or occluder line turn about that line (Arvo 1994, "The Irradiance
+// Jacobian for Partially Occluded Polyhedral Sources"), while those on the receiver's tangent
+// plane or on the horizon stay where they are in direction space. `a` and `b` are two input
+// points of the line (model coordinates, not relative to the receiver) for the segment kinds.
+struct EdgeSource {
+  enum class Kind : std::uint8_t { unknown, aperture, occluder, receiver_plane, horizon };
+  Kind kind = Kind::unknown;
+  Vec3 a{}, b{};
+
+  friend bool operator==(const EdgeSource&, const EdgeSource&) = default;
+};
+using EdgeSourceLoop = std::vector<EdgeSource>;
+
 // A region is a set of loops whose signed integrals add up: outer boundaries positive, holes
 // negative, or a partition into positively oriented pieces (interior edges then cancel).
+// `edge_sources` is filled only where asked for (VisibilityOptions::edge_sources): then it has
+// one entry per loop, and edge_sources[l][i] is the source of the edge from loops[l][i] to
+// loops[l][i + 1] (cyclically). Code that builds new loops from old ones leaves it empty.
 struct SphericalRegion {
   std::vector<DirectionLoop> loops;
+  std::vector<EdgeSourceLoop> edge_sources{};
 
   bool empty() const noexcept { return loops.empty(); }
+  bool has_edge_sources() const noexcept { return !loops.empty() && edge_sources.size() == loops.size(); }
 };
 
 // The directions from `origin` that hit the planar polygon, whatever its vertex order, as one

@@ -49,19 +49,27 @@ using clipping::LazyExact;
 // of its length, as the certified path accepts its vertices; otherwise the function returns
 // false and the caller clips in the general (certified) way. Found by fuzz_visibility: a receiver
 // 1e-12 from an aperture's edge line, whose visible solid angle came out 5e-5 too small.
+// Edge sources, when asked for, follow Sutherland–Hodgman as keep_side does (shadow_clipping.hpp):
+// id[i] is the edge leaving vertex i: k ≥ 0 the piece's edge from v[k], −1 the tangent plane,
+// −2 the horizon.
 
 template <class Signs>
-bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, SphericalRegion& region) {
+bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, const VisibilityOptions& options,
+                             SphericalRegion& region) {
   constexpr std::size_t kMax = 64;
   const auto& v = piece.vertices;
   if (v.size() + 2 > kMax) return false;  // the general clipper takes such a piece
   std::array<Vec3, kMax> a, b;
   std::array<double, kMax> f;
-  std::array<int, kMax> s;
+  std::array<int, kMax> s, id, next_id;
+  const bool track = options.edge_sources;  // the common case does no bookkeeping
   std::size_t m = v.size();
-  for (std::size_t i = 0; i < m; ++i) a[i] = v[i] - p;
+  for (std::size_t i = 0; i < m; ++i) {
+    a[i] = v[i] - p;
+    id[i] = int(i);
+  }
   for (int plane = 0; plane < 2; ++plane) {
-    if (plane == 1 && n.x == 0 && n.y == 0) break;  // for an upward receiver the planes coincide
+    if (plane == 1 && (!options.clip_to_horizon || (n.x == 0 && n.y == 0))) break;  // for an upward receiver the planes coincide
     bool any_positive = false, any_negative = false;
     for (std::size_t i = 0; i < m; ++i) {
       // Plane 0 (n·d ≥ 0) meets only input vertices: exact signs. Plane 1 (d_z ≥ 0): the sign of
@@ -74,9 +82,13 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
     if (!any_positive) return true;
     if (!any_negative) continue;
     std::size_t k = 0;
+    const int cut = plane == 0 ? -1 : -2;
     for (std::size_t i = 0; i < m; ++i) {
       const std::size_t j = (i + 1) % m;
-      if (s[i] >= 0) b[k++] = a[i];
+      if (s[i] >= 0) {
+        if (track) next_id[k] = s[i] == 0 && s[j] < 0 ? cut : id[i];  // on the cut, heading out: along it
+        b[k++] = a[i];
+      }
       if (s[i] * s[j] < 0) {
         const Vec3 x = a[i] + (f[i] / (f[i] - f[j])) * (a[j] - a[i]);
         // Rounding of t, of a_j − a_i, of the product and of the sum: 4 ulps of |a_i| + |a_j|;
@@ -85,15 +97,35 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
         const double length = norm(a[i]) + norm(a[j]);
         const double slide = plane == 0 ? 3 * norm(a[j] - a[i]) / std::abs(f[i] - f[j]) : 0;
         if (!(0x1p-53 * length * (4 + slide) <= 0x1p-45 * norm(x))) return false;
+        if (track) next_id[k] = s[i] > 0 ? cut : id[i];  // exit point: along the cut; entry: along the old edge
         b[k++] = x;
       }
     }
     a = b;
+    if (track) id = next_id;
     m = k;
   }
   DirectionLoop loop(a.begin(), a.begin() + m);
   if (sh > 0) std::reverse(loop.begin(), loop.end());
   region.loops.push_back(std::move(loop));
+  if (track) {
+    EdgeSourceLoop sources(m);
+    for (std::size_t i = 0; i < m; ++i) {
+      EdgeSource& e = sources[i];
+      if (id[i] >= 0) {
+        e = {EdgeSource::Kind::aperture, v[std::size_t(id[i])], v[(std::size_t(id[i]) + 1) % v.size()]};
+      } else {
+        e.kind = id[i] == -1 ? EdgeSource::Kind::receiver_plane : EdgeSource::Kind::horizon;
+      }
+    }
+    // Reversing the loop keeps each edge's source on its edge, which now starts at its other end.
+    if (sh > 0) {
+      EdgeSourceLoop reversed(m);
+      for (std::size_t i = 0; i < m; ++i) reversed[i] = sources[(2 * m - 2 - i) % m];
+      sources = std::move(reversed);
+    }
+    region.edge_sources.push_back(std::move(sources));
+  }
   return true;
 }
 
@@ -174,11 +206,11 @@ struct VisibilityEngine::Impl {
   }
 
   template <class Signs>
-  bool survives(const ConvexPiece& o, const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh) const {
+  bool survives(const ConvexPiece& o, const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon) const {
     const auto& ov = o.vertices;
     const auto& wv = w.vertices;
     const auto all = [&](auto&& pred) { return std::all_of(ov.begin(), ov.end(), pred); };
-    if (all([&](const Vec3& v) { return v.z <= p.z; })) return false;
+    if (horizon && all([&](const Vec3& v) { return v.z <= p.z; })) return false;
     if (all([&](const Vec3& v) { return Signs::dot_diff(n, v, p) <= 0; })) return false;
     // Points of the cone have N·(x − p) of the sign of −h.
     if (all([&](const Vec3& v) { return -sh * Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, p) <= 0; }))
@@ -200,13 +232,13 @@ struct VisibilityEngine::Impl {
   }
 
   template <class Signs>
-  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, std::vector<const ConvexPiece*>& out,
-               VisibilityCounters& counters) const {
+  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon,
+               std::vector<const ConvexPiece*>& out, VisibilityCounters& counters) const {
     if (nodes.empty()) return;
     // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
     std::vector<CullPlane> planes;
     planes.push_back({n, 1});
-    planes.push_back({{0, 0, 1}, 1});
+    if (horizon) planes.push_back({{0, 0, 1}, 1});
     const auto& wv = w.vertices;
     const Vec3 eb = wv[w.base_b] - wv[0], ec = wv[w.base_c] - wv[0];
     planes.push_back({double(-sh) * cross(eb, ec), norm(eb) * norm(ec)});
@@ -236,13 +268,14 @@ struct VisibilityEngine::Impl {
           continue;
         }
         ++counters.occluders_tested;
-        if (survives<Signs>(o, p, n, w, sh)) out.push_back(&o);
+        if (survives<Signs>(o, p, n, w, sh, horizon)) out.push_back(&o);
       }
     }
   }
 
   template <class Signs, class FT>
-  void evaluate(const Vec3& p, const Vec3& n, const ConvexPiece& w, SphericalRegion& region, VisibilityCounters& counters) const {
+  void evaluate(const Vec3& p, const Vec3& n, const ConvexPiece& w, const VisibilityOptions& options, SphericalRegion& region,
+                VisibilityCounters& counters) const {
     ++counters.pairs;
     const auto& wv = w.vertices;
     const int sh = Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], p, wv[0]);
@@ -251,41 +284,43 @@ struct VisibilityEngine::Impl {
       return;
     }
     // Whole piece behind the receiver or below its horizon: nothing to do.
-    const bool below = std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return v.z <= p.z; });
+    const bool below =
+        options.clip_to_horizon && std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return v.z <= p.z; });
     const bool behind = std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return Signs::dot_diff(n, v, p) <= 0; });
     if (below || behind) {
       ++counters.pairs_not_facing;
       return;
     }
     std::vector<const ConvexPiece*> blockers;
-    collect<Signs>(p, n, w, sh, blockers, counters);
+    collect<Signs>(p, n, w, sh, options.clip_to_horizon, blockers, counters);
     const bool reference = mode == GeometryMode::rational;
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
-    const bool shortcut = blockers.empty() && !reference && unobstructed_directions<Signs>(p, n, w, sh, region);
+    const bool shortcut = blockers.empty() && !reference && unobstructed_directions<Signs>(p, n, w, sh, options, region);
     if (shortcut) {
       ++counters.pairs_unobstructed;
     } else {
       blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
       counters.occluders_clipped += blockers.size();
       if constexpr (std::is_same_v<FT, double>) {
-        clipping::ShadowClipper<double, Signs>(p, n, w, sh).run(blockers, region);
+        clipping::ShadowClipper<double, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, region, options.edge_sources);
       } else {
         SphericalRegion certified;
         bool certain = !reference;
         if (certain) {
           try {
             CGAL::Protect_FPU_rounding<true> upward;
-            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh).run(blockers, certified);
+            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, certified, options.edge_sources);
           } catch (const CGAL::Uncertain_conversion_exception&) {
             certain = false;
           }
         }
         if (certain) {
           for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
+          for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
         } else {
           ++counters.pairs_rational;
-          clipping::ShadowClipper<FT, Signs>(p, n, w, sh).run(blockers, region);
+          clipping::ShadowClipper<FT, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, region, options.edge_sources);
         }
       }
     }
@@ -321,12 +356,17 @@ GeometryMode VisibilityEngine::mode() const noexcept { return impl_->mode; }
 
 SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                                  VisibilityCounters& counters) const {
+  return visible_region(p, n, aperture, counters, VisibilityOptions{});
+}
+
+SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
+                                                 const VisibilityOptions& options) const {
   SphericalRegion region;
   for (const ConvexPiece& piece : impl_->apertures.at(aperture)) {
     if (impl_->mode != GeometryMode::floating)
-      impl_->evaluate<ExactSigns, LazyExact>(p, n, piece, region, counters);
+      impl_->evaluate<ExactSigns, LazyExact>(p, n, piece, options, region, counters);
     else
-      impl_->evaluate<FloatSigns, double>(p, n, piece, region, counters);
+      impl_->evaluate<FloatSigns, double>(p, n, piece, options, region, counters);
   }
   return region;
 }

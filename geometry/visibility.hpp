@@ -43,6 +43,16 @@ struct VisibilityCounters {
   }
 };
 
+// What a visible region is cut to and what it carries.
+struct VisibilityOptions {
+  // Cut to the directions above the horizontal plane through the receiver: right for skies (what
+  // is below the horizon is ground), wrong for luminaires, which may be seen below it.
+  bool clip_to_horizon = true;
+  // Fill SphericalRegion::edge_sources: the 3-D line of every edge, for gradients (Arvo 1994).
+  // Costs a small array per loop; the default leaves the fast path as it is.
+  bool edge_sources = false;
+};
+
 class VisibilityEngine {
  public:
   // Splits apertures and occluders into convex pieces and builds the culling hierarchy.
@@ -63,6 +73,11 @@ class VisibilityEngine {
   // loops (a partition of the region); empty when nothing is visible. Thread-safe.
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                  VisibilityCounters& counters) const;
+  // The same with options: without the horizon cut (the region of a luminaire), and with the
+  // source of every edge. Edge sources are the same in all three geometry modes (the
+  // combinatorics are exact in all but degenerate float cases).
+  SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
+                                 const VisibilityOptions& options) const;
 
  private:
   struct Impl;

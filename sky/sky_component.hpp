@@ -14,6 +14,7 @@ namespace daylit {
 
 struct SkyComponentResult {
   std::vector<double> sc_percent;  // per sensor, in grid order
+  std::vector<Vec3> sc_gradient;   // per sensor when asked for: ∇_p SC, percent per model unit
   VisibilityCounters counters;
 };
 
@@ -24,11 +25,27 @@ using ProgressCallback = std::function<void(std::size_t done)>;
 // of aperture a times its transmittance (constant, or glass's polynomial in the cosine of incidence,
 // integrated with it: sky_irradiance_through_glazing). Runs in parallel over sensors (oneTBB,
 // as many threads as the caller's arena allows); every sensor is computed independently, so results do not depend on the thread count.
+// With `gradient`, also ∇_p SC at every sensor (sky_component_with_gradient).
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                                 SkyModel sky, const ProgressCallback& progress = {});
+                                 SkyModel sky, const ProgressCallback& progress = {}, bool gradient = false);
 
 // The same for one sensor (no threading): the sky component in percent.
 double sky_component_percent(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor, SkyModel sky,
                              VisibilityCounters& counters);
+
+// The sky component and its gradient with respect to the sensor's position (normal fixed), in
+// percent and percent per model unit. The sky's luminance depends on the direction only (times
+// the glazing's polynomial in the cosine of incidence), so only the boundary term of Arvo's
+// irradiance Jacobian (SIGGRAPH 1994) is there: a polynomial integrated in closed form along
+// every edge of the visible region that lies on an aperture or occluder edge
+// (illumination/irradiance_gradient.hpp); edges on the horizon and the receiver's plane stay.
+// Exact up to rounding: estimated relative error below 1e-7 of |∇SC| (recomputed in long double
+// or __float128 where edge terms cancel).
+struct SkyComponentPoint {
+  double percent = 0;
+  Vec3 gradient{};
+};
+SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
+                                              SkyModel sky, VisibilityCounters& counters);
 
 }  // namespace daylit

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
-# Then `bench scenes --quick`, `bench stiff --quick` and `bench skies --quick` (below).
+# Then `bench scenes --quick`, `bench stiff --quick`, `bench skies --quick` and `bench rational --quick`
+# (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -118,6 +119,39 @@ skies=$out/skies_error_vs_time.csv
 report=$(awk -F, 'NR > 1 && $3 == "cubature" && $4 == 1e-08 && !($6 <= 1e-6) { print "cubature off by " $6 " on type " $1 }' "$skies")
 [ -z "$report" ] || fail "$report"
 [ "$(tail -n +2 "$out/skies_e_out.csv" | wc -l)" -eq 2 ] || fail "skies: E_out rows"
+
+# `daylit bench rational --quick`: the special functions and both rational-moment paths. GSL's Cl2
+# and eq. 36 are exact to roundoff; Grosjean within 3e-6; the exact path within 1e-12 of the
+# 512-node reference, the semi-analytic one at 32 nodes as well; every degree row has an estimate.
+start=$SECONDS
+"$daylit" bench rational --quick --quiet --out "$out" || fail "bench rational: exit status $?"
+echo "bench rational --quick: $((SECONDS - start)) s"
+for f in rational_special_functions.csv rational_special_functions.png rational_moments_error_vs_time.csv \
+         rational_moments_error_vs_time.png rational_cost_per_edge.png rational_luminaire_degree.csv; do
+  [ -s "$out/$f" ] || fail "$f missing or empty"
+done
+special=$out/rational_special_functions.csv
+[ "$(head -n 1 "$special")" = "function,method,parameter,time_per_eval_s,max_error,rms_error,error_kind" ] || fail "header of $special"
+report=$(awk -F, 'NR > 1 {
+    if (!($4 > 0)) print "no time for " $1 " " $2
+    if ($1 == "cl2" && $2 == "gsl" && !($5 < 2e-15)) print "GSL Cl2 off by " $5
+    if ($1 == "cl2" && $2 == "grosjean" && !($5 < 3e-6)) print "Grosjean off by " $5
+    if ($1 == "lambda" && $2 == "eq36_gsl" && !($6 < 1e-13)) print "Lambda by eq. 36 off by " $6 " (RMS)"
+  }' "$special")
+[ -z "$report" ] || fail "$report"
+moments=$out/rational_moments_error_vs_time.csv
+[ "$(head -n 1 "$moments")" = "n,edges,method,parameter,time_per_eval_s,ns_per_edge,relative_error,relative_error_estimate,precision" ] ||
+  fail "header of $moments"
+report=$(awk -F, 'NR > 1 {
+    if (!($5 > 0)) print "no time for n = " $1 " " $3 " " $4
+    if ($3 == "exact" && !($7 < 1e-12)) print "exact path off by " $7 " at n = " $1
+    if ($3 == "semi_analytic" && $4 == 32 && !($7 < 1e-12)) print "semi-analytic (32 nodes) off by " $7 " at n = " $1
+    rows[$3]++
+  }
+  END { if (rows["exact"] < 6 || rows["semi_analytic"] < 12 || rows["cubature"] < 1) print "missing rows" }' "$moments")
+[ -z "$report" ] || fail "$report"
+[ "$(awk -F, 'NR > 1 && $4 ~ /^[0-9.e+-]+$/ && $4 < 1e-10' "$out/rational_luminaire_degree.csv" | wc -l)" -ge 12 ] ||
+  fail "rational_luminaire_degree.csv: fewer than 12 rows within 1e-10"
 
 echo "$failures failures"
 [ "$failures" -eq 0 ]

@@ -254,3 +254,64 @@ TEST_CASE("a polygon that crosses itself is an error naming its line") {
   const Polygon bowtie = polygon({{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 1, 0}}, "bowtie");
   CHECK_THROWS_WITH(convex_pieces(bowtie, 0), Catch::Contains("test:1") && Catch::Contains("intersects itself"));
 }
+
+TEST_CASE("a window as a 64-gon behind occluders is clipped in certified intervals, with no rational fallback") {
+  // A fine polygon's cone has nearly parallel consecutive side planes (exterior angle 2π/64): an
+  // occluder clipped to all of them used to build each new vertex from the one before, its
+  // interval widening by ~64/2π per cut, so every such pair fell back to rationals
+  // (shadow_clipping.hpp, rebuild_on). Both occluders here cross most of the cone's planes.
+  std::vector<Vec3> window;
+  for (int i = 0; i < 64; ++i) {
+    const double t = 2 * 3.141592653589793 * (i + 0.5) / 64;
+    window.push_back({1 + 0.9 * std::cos(t), 0, 1.5 + 0.45 * std::sin(t)});
+  }
+  Scene scene;
+  scene.apertures.push_back({polygon(window, "round window"), 1.0});
+  scene.occluders.push_back(polygon({{-1, 0, 1.7}, {3, 0, 1.7}, {3, -0.8, 1.7}, {-1, -0.8, 1.7}}, "overhang"));
+  scene.occluders.push_back(polygon({{-6, -4, 0}, {8, -4, 0}, {8, -4, 3.2}, {-6, -4, 3.2}}, "building across"));
+  const VisibilityEngine exact(scene, GeometryMode::exact), rational(scene, GeometryMode::rational);
+  VisibilityCounters counters, reference_counters;
+  for (const Vec3 p : {Vec3{1, 1.5, 0.85}, Vec3{0.2, 0.7, 1.2}, Vec3{2.5, 3, 0.85}, Vec3{-0.5, 0.4, 1.6}}) {
+    INFO("sensor " << p.x << " " << p.y << " " << p.z);
+    const Sensor sensor{p, {0, 0, 1}};
+    const double value = sky_component_percent(exact, scene, sensor, SkyModel::cie_overcast, counters);
+    const double reference = sky_component_percent(rational, scene, sensor, SkyModel::cie_overcast, reference_counters);
+    CHECK(reference > 0);
+    // Directions certified to 2^-45 of their length (shadow_clipping.hpp): a few 1e-14 of SC.
+    CHECK(std::abs(value - reference) <= 1e-13 * reference);
+  }
+  CHECK(counters.pairs_clipped == 4);
+  CHECK(counters.pairs_rational == 0);
+}
+
+TEST_CASE("a reveal that closes the view exactly leaves no loop at all; one that closes it only in decimals leaves a true sliver") {
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (auto& f : reveal(0.25)) scene.occluders.push_back(f);
+  scene.occluders.push_back(wall_with_seam_hole());
+  Scene decimal;
+  decimal.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (auto& f : reveal(0.3)) decimal.occluders.push_back(f);
+  decimal.occluders.push_back(wall_with_seam_hole());
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+    // From (−6, 0.75) the far jamb's outer edge (x = 2, y = −0.25) projects onto x = −6 + 8·0.75/1
+    // = 0, the window's near edge, in exact binary arithmetic: the opening closes to a line. The
+    // signs there are exact zeros, and Sutherland–Hodgman makes a vertex only where a sign
+    // changes strictly, so no piece of zero area is ever formed: the region is empty, SC exactly 0.
+    const VisibilityEngine engine(scene, mode);
+    VisibilityCounters counters;
+    const Vec3 p{-6, 0.75, 0.875};
+    CHECK(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+    CHECK(counters.pairs_clipped == 1);
+    CHECK(sky_component_percent(engine, scene, {p, {0, 0, 1}}, SkyModel::cie_overcast, counters) == 0);
+    // With depth 0.3 from (−6, 0.9), 0.9/1.2 is 3/4 only in decimals: in the doubles given, the
+    // edge projects to x = 9.25e-17 (exact rationals), and a sliver that wide and 0.71 m high is
+    // visible, ~1e-18 %. Both exact modes keep it (its loops are not of zero area: dropping them
+    // would be wrong); rounded to double, its directions leave SC below 1e-17 %.
+    const VisibilityEngine sliver(decimal, mode);
+    const Vec3 q{-6, 0.9, 0.85};
+    CHECK_FALSE(sliver.visible_region(q, {0, 0, 1}, 0, counters).empty());
+    const double sc_sliver = sky_component_percent(sliver, decimal, {q, {0, 0, 1}}, SkyModel::cie_overcast, counters);
+    CHECK(std::abs(sc_sliver) < 1e-17);
+  }
+}

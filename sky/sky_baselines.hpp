@@ -6,7 +6,8 @@
 // both integrate the same sky luminance and the same glazing transmittance polynomial as the exact
 // path, so that their errors against it are errors of method alone.
 //
-// They live beside the bench (cli/) because nothing else in daylit uses them.
+// They live in sky/ beside the exact sky component they are measured against (DESIGN.md §1: sky
+// models and their reference integrators); `daylit bench scenes` is their user.
 
 #include <cstdint>
 #include <vector>
@@ -16,7 +17,7 @@
 #include "geometry/visibility.hpp"
 #include "sky/sky_model.hpp"
 
-namespace daylit::cli {
+namespace daylit {
 
 // ── Ray casting ─────────────────────────────────────────────────────────────────────────────
 
@@ -104,4 +105,4 @@ struct CubatureResult {
 CubatureResult sky_component_cubature(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
                                       SkyModel sky, double relative_tolerance, VisibilityCounters& counters);
 
-}  // namespace daylit::cli
+}  // namespace daylit

@@ -1,4 +1,4 @@
-#include "cli/sky_baselines.hpp"
+#include "sky/sky_baselines.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 
 #include "geometry/polygon.hpp"
 
-namespace daylit::cli {
+namespace daylit {
 
 namespace {
 
@@ -386,4 +386,4 @@ CubatureResult sky_component_cubature(const VisibilityEngine& engine, const Scen
   return {100 * value / unobstructed_horizontal_irradiance(sky), evaluations};
 }
 
-}  // namespace daylit::cli
+}  // namespace daylit
