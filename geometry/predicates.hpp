@@ -7,6 +7,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Gmpq.h>
 #include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
 
 #include "geometry/vec3.hpp"
 
@@ -19,8 +20,12 @@ inline Epick::Point_2 drop(const Vec3& v, int k) { return {v[(k + 1) % 3], v[(k 
 
 inline int sign_of(double x) { return (x > 0) - (x < 0); }
 
-// Interval arithmetic first; exact rationals only when the interval contains zero. This is the
+// Interval arithmetic first; exact arithmetic only when the interval contains zero. This is the
 // filter of CGAL's Filtered_predicate, written out for expressions that are not kernel predicates.
+// The expressions are polynomials in the input doubles (sums, differences and products only), so
+// CGAL's exact multiprecision floats (Mpzf, which CGAL's own predicates fall back to) evaluate
+// them exactly, without the gcds that rationals spend their time in. The fallback is taken for
+// exact zeros, the degeneracies buildings are made of.
 template <class Expr>
 int filtered_sign(const Expr& expr) {
   {
@@ -30,7 +35,7 @@ int filtered_sign(const Expr& expr) {
     if (r.sup() < 0) return -1;
     if (r.inf() == 0 && r.sup() == 0) return 0;
   }
-  return int(CGAL::sign(expr(CGAL::Gmpq(0))));
+  return int(CGAL::sign(expr(CGAL::Mpzf(0))));
 }
 
 // n·(v − p)
