@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -428,6 +429,28 @@ TEST_CASE("fuzz regression: a receiver 1e-12 from an aperture's edge line keeps 
   const double reference = solid_angle(VisibilityEngine(scene, GeometryMode::rational).visible_region(p, n, 0, counters));
   CHECK(exact == Approx(reference).epsilon(1e-12));
   CHECK(exact == Approx(0.9553161687774171).epsilon(1e-12));
+}
+
+TEST_CASE("fuzz regression: a sensor facing down sees nothing above its horizon, to the directions' rounding") {
+  // fuzz_visibility: a sliver aperture 5.4e6 m from the origin, seen from a sensor facing straight
+  // down: in front of it and above its horizon is the plane z = 0 alone, so the true solid angle is
+  // 0. The exact mode gave −1.2e-15 sr and the rational mode −2.9e-15: the rounding of directions
+  // (certified to 2^-45 of their length in exact mode) on a region of zero area, bounded by its
+  // perimeter (≤ 2π) times 2^-45.
+  using test::polygon;
+  Scene scene;
+  scene.apertures.push_back({polygon({{5400000.000002861, 5400000.0000009546, -3.0000009518118986},
+                                      {5400013.0000076294, 5400013.0000000037, 0.99999810013082424},
+                                      {5399986.9999961853, 5399986.9999999981, -7.0000019110739231},
+                                      {5399999, 5399999, -1.0000019073486328}}),
+                             1.0});
+  const Vec3 p{5400000, 5400000, 0}, n{0, 0, -1};
+  const double bound = 2 * std::numbers::pi * 0x1p-45;
+  VisibilityCounters counters;
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+    const double visible = solid_angle(VisibilityEngine(scene, mode).visible_region(p, n, 0, counters));
+    CHECK(std::abs(visible) <= bound);
+  }
 }
 
 TEST_CASE("fuzz regression: the solid angle of a loop with a vertex 1e-12 from the receiver") {
