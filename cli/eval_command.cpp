@@ -105,10 +105,12 @@ std::vector<Vec3> polygon_field(const json& poly, const std::string& name = "reg
   return vertices;
 }
 
-// region {"cap": {"axis": [x,y,z], "half_angle": radians}}: the cap {u : â·u ≥ cos half_angle},
-// half_angle in (0, π], with the query's optional "clip" and "factors", by the closed forms of
-// cap_moment.hpp (factor patterns (), (c^n), (c^n, L^1) with a clip c; (), (L^k) without).
-double answer_cap_moment(const json& q, const json& cap) {
+// region.cap {"axis": [x,y,z], "half_angle": radians}: a non-zero axis and a half-angle in (0, π].
+struct CapRegion {
+  Vec3 axis;
+  double half_angle;
+};
+CapRegion cap_field(const json& cap) {
   if (!cap.is_object() || !cap.contains("axis") || !cap.contains("half_angle"))
     throw Error("region.cap must be {\"axis\": [x,y,z], \"half_angle\": radians}");
   const Vec3 axis = vector_field(cap["axis"], "region.cap.axis");
@@ -116,14 +118,11 @@ double answer_cap_moment(const json& q, const json& cap) {
   const json& h = cap["half_angle"];
   if (!h.is_number() || !(h.get<double>() > 0 && h.get<double>() <= M_PI))
     throw Error("region.cap.half_angle must be a number in (0, pi] (radians)");
-  std::optional<Vec3> clip;
-  if (q.contains("clip")) clip = vector_field(q["clip"], "clip");
-  if (q.contains("denominator")) {
-    const json& d = q["denominator"];
-    if (!d.is_object() || !d.contains("power")) throw Error("denominator must be {\"axis\": [x,y,z], \"power\": q}");
-    if (power_field(d["power"], "denominator.power") > 0)
-      throw Error("rational moments (a denominator with power > 0) are answered on polygon regions only");
-  }
+  return {axis, h.get<double>()};
+}
+
+// The query's optional "factors": [{"axis": [x,y,z], "power": p}, …].
+std::vector<Factor> factors_field(const json& q) {
   std::vector<Factor> factors;
   if (q.contains("factors")) {
     const json& fs = q["factors"];
@@ -135,7 +134,23 @@ double answer_cap_moment(const json& q, const json& cap) {
       factors.push_back({vector_field(fs[i]["axis"], where + ".axis"), power_field(fs[i]["power"], where + ".power")});
     }
   }
-  return cap_moment(axis, h.get<double>(), clip, factors);
+  return factors;
+}
+
+// region {"cap": {"axis": [x,y,z], "half_angle": radians}}: the cap {u : â·u ≥ cos half_angle},
+// half_angle in (0, π], with the query's optional "clip" and "factors", by the closed forms of
+// cap_moment.hpp (factor patterns (), (c^n), (c^n, L^1) with a clip c; (), (L^k) without).
+double answer_cap_moment(const json& q, const json& cap) {
+  const CapRegion c = cap_field(cap);
+  std::optional<Vec3> clip;
+  if (q.contains("clip")) clip = vector_field(q["clip"], "clip");
+  if (q.contains("denominator")) {
+    const json& d = q["denominator"];
+    if (!d.is_object() || !d.contains("power")) throw Error("denominator must be {\"axis\": [x,y,z], \"power\": q}");
+    if (power_field(d["power"], "denominator.power") > 0)
+      throw Error("rational moments (a denominator with power > 0) are answered on polygon regions only");
+  }
+  return cap_moment(c.axis, c.half_angle, clip, factors_field(q));
 }
 
 // ∫_A Π_k (a_k·u)^{p_k} / (d·u)^q dσ for q = 1 or 2 over a polygon region (rational_moments.hpp):
@@ -222,17 +237,7 @@ double answer_moment(const json& q) {
       if (!(norm(denominator_axis) > 0)) throw Error("denominator.axis must be non-zero");
     }
   }
-  std::vector<Factor> factors;
-  if (q.contains("factors")) {
-    const json& fs = q["factors"];
-    if (!fs.is_array()) throw Error("factors must be an array");
-    for (std::size_t i = 0; i < fs.size(); ++i) {
-      const std::string where = "factors[" + std::to_string(i) + "]";
-      if (!fs[i].is_object() || !fs[i].contains("axis") || !fs[i].contains("power"))
-        throw Error(where + " must be {\"axis\": [x,y,z], \"power\": p}");
-      factors.push_back({vector_field(fs[i]["axis"], where + ".axis"), power_field(fs[i]["power"], where + ".power")});
-    }
-  }
+  std::vector<Factor> factors = factors_field(q);
   double edges = 0, powers = 1;
   for (const auto& loop : region.loops) edges += double(loop.size());
   for (const Factor& f : factors) powers += f.power;
@@ -268,17 +273,10 @@ json answer_sky_irradiance(const json& q) {
   const CieSky cie(sky["cie"].get<int>(), sun_direction(sky["sun_zenith"].get<double>(), sky["sun_azimuth"].get<double>()));
   const std::string method = sky.value("method", "quadrature");
   if (r.contains("cap")) {
-    const json& cap = r["cap"];
-    if (!cap.is_object() || !cap.contains("axis") || !cap.contains("half_angle"))
-      throw Error("region.cap must be {\"axis\": [x,y,z], \"half_angle\": radians}");
-    const Vec3 axis = vector_field(cap["axis"], "region.cap.axis");
-    if (!(norm(axis) > 0)) throw Error("region.cap.axis must be non-zero");
-    const json& h = cap["half_angle"];
-    if (!h.is_number() || !(h.get<double>() > 0 && h.get<double>() <= M_PI))
-      throw Error("region.cap.half_angle must be a number in (0, pi] (radians)");
+    const CapRegion c = cap_field(r["cap"]);
     if (method != "quadrature")
       throw Error("sky.method \"fit\" has no closed form over caps (its terms are moments about three axes); use quadrature");
-    return cie_sky_irradiance_over_cap(cie, axis, h.get<double>(), normalized(n), 1e-12).value;
+    return cie_sky_irradiance_over_cap(cie, c.axis, c.half_angle, normalized(n), 1e-12).value;
   }
   const json& poly = r["polygon"];
   if (!poly.is_array() || poly.size() < 3) throw Error("region.polygon must have at least 3 vertices");
