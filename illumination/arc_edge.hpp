@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include "geometry/spherical_region.hpp"
 #include "illumination/real_vector.hpp"
 
 namespace daylit {
@@ -44,6 +45,16 @@ std::optional<ArcEdge<R>> arc_edge(const real::V3<R>& a, const real::V3<R>& b) n
   arc.start_tangent = cross(arc.normal, arc.start);
   arc.end_tangent = cross(arc.normal, arc.end);
   return arc;
+}
+
+// Calls f(arc) for every non-degenerate edge of every loop of a region, in precision R.
+template <class R, class F>
+void for_each_edge(const SphericalRegion& region, F&& f) {
+  for (const auto& loop : region.loops) {
+    const std::size_t m = loop.size();
+    for (std::size_t i = 0; i < m; ++i)
+      if (const auto arc = arc_edge(real::V3<R>(loop[i]), real::V3<R>(loop[(i + 1) % m]))) f(*arc);
+  }
 }
 
 }  // namespace daylit

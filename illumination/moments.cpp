@@ -24,16 +24,6 @@ struct Sum {
   void add(R term) { add(term, real::abs(term)); }
 };
 
-// Calls f(edge) for every non-degenerate edge of every loop, in precision R.
-template <class R, class F>
-void for_each_edge(const SphericalRegion& region, F&& f) {
-  for (const auto& loop : region.loops) {
-    const std::size_t m = loop.size();
-    for (std::size_t i = 0; i < m; ++i)
-      if (const auto arc = arc_edge(real::V3<R>(loop[i]), real::V3<R>(loop[(i + 1) % m]))) f(*arc);
-  }
-}
-
 // Van Oosterom–Strackee (see solid_angle.hpp), fan from the first vertex of each loop.
 template <class R>
 Sum<R> solid_angle_sum(const SphericalRegion& region) {

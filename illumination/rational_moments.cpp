@@ -26,16 +26,6 @@ real::V3<R> unit(const Vec3& v) {
   return r / real::norm(r);
 }
 
-// Calls f(arc) for every non-degenerate edge of every loop, in precision R.
-template <class R, class F>
-void for_each_edge(const SphericalRegion& region, F&& f) {
-  for (const auto& loop : region.loops) {
-    const std::size_t m = loop.size();
-    for (std::size_t i = 0; i < m; ++i)
-      if (const auto arc = arc_edge(real::V3<R>(loop[i]), real::V3<R>(loop[(i + 1) % m]))) f(*arc);
-  }
-}
-
 template <class R>
 Tracked<R> solid_angle_tracked(const SphericalRegion& region) {
   Tracked<R> sum;
