@@ -5,43 +5,13 @@
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "illumination/xoshiro256.hpp"
 
 namespace daylit {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// xoshiro256** (Blackman and Vigna, "Scrambled linear pseudorandom number generators", 2021),
-// seeded through SplitMix64 as its authors recommend: statistically as good as std::mt19937_64
-// for this use, and seeded in nanoseconds rather than the microseconds mt19937_64's 312-word state
-// takes, which would otherwise dominate the cost of a 16-sample estimate.
-class Xoshiro256 {
- public:
-  explicit Xoshiro256(std::uint64_t seed) noexcept {
-    for (auto& word : s_) {
-      seed += 0x9e3779b97f4a7c15ULL;
-      std::uint64_t z = seed;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      word = z ^ (z >> 31);
-    }
-  }
-  std::uint64_t operator()() noexcept {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-  }
-
- private:
-  static std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
-  std::uint64_t s_[4];
-};
 
 // x^k, k ≥ 0, by binary powering: exact for small k and several times faster than std::pow.
 double power(double x, int k) noexcept {
@@ -87,7 +57,7 @@ MonteCarloEstimate stratified(long samples, std::uint64_t seed, double measure, 
   while (cells % nx != 0) --nx;
   const long ny = cells / nx;
   Xoshiro256 rng(seed);
-  const auto uniform = [&rng] { return double(rng() >> 11) * 0x1p-53; };  // [0, 1), 53 random bits
+  const auto uniform = [&rng] { return rng.uniform(); };
   double sum = 0, variance = 0;
   for (long i = 0; i < nx; ++i)
     for (long j = 0; j < ny; ++j) {

@@ -7,42 +7,13 @@
 #include <numbers>
 
 #include "geometry/polygon.hpp"
+#include "illumination/xoshiro256.hpp"
 
 namespace daylit {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// xoshiro256** (Blackman and Vigna 2021) seeded through SplitMix64, as in illumination/monte_carlo.cpp.
-class Xoshiro256 {
- public:
-  explicit Xoshiro256(std::uint64_t seed) noexcept {
-    for (auto& word : s_) {
-      seed += 0x9e3779b97f4a7c15ULL;
-      std::uint64_t z = seed;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      word = z ^ (z >> 31);
-    }
-  }
-  // Uniform in [0, 1), 53 random bits.
-  double uniform() noexcept { return double(next() >> 11) * 0x1p-53; }
-
- private:
-  std::uint64_t next() noexcept {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-  }
-  static std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
-  std::uint64_t s_[4];
-};
 
 double component(const Vec3& v, int axis) noexcept { return v[axis]; }
 
