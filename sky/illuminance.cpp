@@ -25,14 +25,9 @@ struct SensorIlluminance {
   std::size_t regions_by_quadrature = 0;
 };
 
-// The pane's unit normal turned towards the directions of `region` (T depends on |a·u| only, but
-// the closed forms want a·u ≥ 0 over the region).
-Vec3 pane_normal_facing(const Aperture& aperture, const SphericalRegion& region) {
-  Vec3 a = normalized(newell_normal(aperture.polygon.vertices));
-  Vec3 inside{};
-  for (const Vec3& u : region.loops.front()) inside += normalized(u);
-  return dot(a, inside) < 0 ? -1.0 * a : a;
-}
+// The pane's unit normal, either side: T depends on |a·u| only, and the glazing closed forms turn
+// it towards the region themselves.
+Vec3 pane_normal(const Aperture& aperture) { return normalized(newell_normal(aperture.polygon.vertices)); }
 
 // E/L_z from the sky seen in `region` through `aperture`, with a bound on its error.
 void add_sky(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n,
@@ -40,7 +35,7 @@ void add_sky(const DaylightConditions& c, const Aperture& aperture, const Spheri
   const bool glazed = !aperture.angular_transmittance.empty();
   if (c.sky != DaylightConditions::Sky::cie_general) {
     const SkyModel model = c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast;
-    out.sky += glazed ? sky_irradiance_through_glazing(region, n, model, pane_normal_facing(aperture, region),
+    out.sky += glazed ? sky_irradiance_through_glazing(region, n, model, pane_normal(aperture),
                                                        aperture.angular_transmittance)
                       : aperture.transmittance * sky_irradiance(region, n, model);
     return;
@@ -48,7 +43,7 @@ void add_sky(const DaylightConditions& c, const Aperture& aperture, const Spheri
   if (glazed || c.method == DaylightConditions::Method::quadrature) {
     std::function<double(const Vec3&)> transmittance;
     if (glazed) {
-      const Vec3 a = normalized(newell_normal(aperture.polygon.vertices));
+      const Vec3 a = pane_normal(aperture);
       transmittance = [&aperture, a](const Vec3& u) {
         return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
       };
@@ -78,7 +73,7 @@ double sun_through(const DaylightConditions& c, const Aperture& aperture, const 
   const double t = aperture.angular_transmittance.empty()
                        ? aperture.transmittance
                        : evaluate_polynomial(aperture.angular_transmittance,
-                                             std::abs(dot(normalized(newell_normal(aperture.polygon.vertices)), c.sun)));
+                                             std::abs(dot(pane_normal(aperture), c.sun)));
   return t * radiance * visible;
 }
 
