@@ -1,12 +1,6 @@
 #include "sky/illuminance.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
-#include <atomic>
 #include <cmath>
-#include <mutex>
 #include <numbers>
 #include <string>
 
@@ -14,6 +8,7 @@
 #include "illumination/cap_clip.hpp"
 #include "illumination/glass_transmittance.hpp"
 #include "illumination/moments.hpp"
+#include "sky/sensor_loop.hpp"
 
 namespace daylit {
 
@@ -121,31 +116,19 @@ IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene
     long evaluations = 0;
     std::size_t regions_by_quadrature = 0;
   };
-  tbb::enumerable_thread_specific<Local> locals;
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16), [&](const tbb::blocked_range<std::size_t>& range) {
-    Local& local = locals.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const SensorIlluminance s = sensor_illuminance(engine, scene, grid.sensors[i], conditions, local.counters);
-      result.sky_lux[i] = s.sky;
-      result.sun_lux[i] = s.sun;
-      result.sky_error_lux[i] = s.sky_error;
-      local.evaluations += s.evaluations;
-      local.regions_by_quadrature += s.regions_by_quadrature;
-    }
-    const std::size_t now = done += range.size();
-    if (progress) {
-      std::unique_lock lock(progress_mutex, std::try_to_lock);
-      if (lock) progress(now);
-    }
+  const auto locals = for_each_sensor<Local>(count, 16, progress, [&](std::size_t i, Local& local) {
+    const SensorIlluminance s = sensor_illuminance(engine, scene, grid.sensors[i], conditions, local.counters);
+    result.sky_lux[i] = s.sky;
+    result.sun_lux[i] = s.sun;
+    result.sky_error_lux[i] = s.sky_error;
+    local.evaluations += s.evaluations;
+    local.regions_by_quadrature += s.regions_by_quadrature;
   });
   for (const Local& l : locals) {
     result.counters += l.counters;
     result.quadrature_evaluations += l.evaluations;
     result.regions_by_quadrature += l.regions_by_quadrature;
   }
-  if (progress) progress(count);
   return result;
 }
 

@@ -1,15 +1,10 @@
 #include "sky/sky_component.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
-#include <atomic>
 #include <cmath>
 #include <string>
-#include <mutex>
 
 #include "illumination/irradiance_gradient.hpp"
+#include "sky/sensor_loop.hpp"
 
 namespace daylit {
 
@@ -96,28 +91,16 @@ SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& sc
   const std::size_t count = grid.sensors.size();
   result.sc_percent.assign(count, 0.0);
   if (gradient) result.sc_gradient.assign(count, Vec3{});
-  tbb::enumerable_thread_specific<VisibilityCounters> counters;
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64), [&](const tbb::blocked_range<std::size_t>& range) {
-    VisibilityCounters& local = counters.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      if (gradient) {
-        const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local);
-        result.sc_percent[i] = point.percent;
-        result.sc_gradient[i] = point.gradient;
-      } else {
-        result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local);
-      }
-    }
-    const std::size_t now = done += range.size();
-    if (progress) {
-      std::unique_lock lock(progress_mutex, std::try_to_lock);
-      if (lock) progress(now);
+  const auto counters = for_each_sensor<VisibilityCounters>(count, 64, progress, [&](std::size_t i, VisibilityCounters& local) {
+    if (gradient) {
+      const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local);
+      result.sc_percent[i] = point.percent;
+      result.sc_gradient[i] = point.gradient;
+    } else {
+      result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local);
     }
   });
   for (const auto& c : counters) result.counters += c;
-  if (progress) progress(count);
   return result;
 }
 
