@@ -45,8 +45,7 @@ struct IlluminanceOptions {
   std::string out, summary, image;
   int threads = 0;
   bool quiet = false;
-  CLI::Option *zenith_luminance_option = nullptr, *diffuse_horizontal_option = nullptr, *sun_zenith_option = nullptr,
-              *context_min_angle_option = nullptr;
+  CLI::Option *zenith_luminance_option = nullptr, *diffuse_horizontal_option = nullptr, *sun_zenith_option = nullptr;
 };
 
 // "uniform", "cie-overcast" or "cie-1" … "cie-15"; 0 for the first two, else the CIE type.
@@ -187,9 +186,11 @@ int run_illuminance(IlluminanceOptions opt) {
   c.zenith_luminance = opt.zenith_luminance_option->count() > 0 ? opt.zenith_luminance : opt.diffuse_horizontal / e_out_over_lz;
 
   // Context buildings below the angular threshold may hide part of the sun's disk (0.53° across):
-  // with the sun on, the default keeps every building that can be seen.
-  if (c.has_sun() && opt.context_min_angle_option->count() == 0) opt.files.context_min_angle_deg = 0;
-  ModelInputs model = load_model(opt.files, c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast);
+  // with the sun on, those in its beam are kept, so the sun's illuminance loses nothing.
+  std::optional<SunBeam> sun_beam;
+  if (c.has_sun()) sun_beam = SunBeam{c.sun, c.sun_half_angle};
+  ModelInputs model = load_model(opt.files, c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast,
+                                 sun_beam);
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
 
@@ -279,12 +280,9 @@ int run_illuminance(IlluminanceOptions opt) {
   if (site) summary["site"] = site_json(*site, opt.files.site);
   if (model.context) {
     nlohmann::json context = context_json(*model.context, opt.files.context);
+    // The sun's bound is 0: with the sun on, the buildings in its beam were kept (load_model).
     const double omega = model.context->left_out_solid_angle_sr;
-    const double sin_rho = std::sin(c.sun_half_angle);
-    const double sun_solid_angle = 2 * std::numbers::pi * (1 - std::cos(c.sun_half_angle));
-    context["illuminance_change_bound_lux"] = {
-        {"sky", omega * c.zenith_luminance * max_relative_luminance(c)},
-        {"sun", c.has_sun() ? c.direct_normal / (std::numbers::pi * sin_rho * sin_rho) * std::min(omega, sun_solid_angle) : 0.0}};
+    context["illuminance_change_bound_lux"] = {{"sky", omega * c.zenith_luminance * max_relative_luminance(c)}, {"sun", 0.0}};
     summary["context"] = context;
   }
   summary["scene"] = scene_json(model.scene, engine);
@@ -387,11 +385,10 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   cmd->add_option("--site", f.site, "Site JSON (as for `daylit df`): places the model on the Earth")->check(CLI::ExistingFile);
   cmd->add_option("--context", f.context, "GeoJSON of neighbouring buildings (as for `daylit df`); needs --site")
       ->check(CLI::ExistingFile);
-  opt->context_min_angle_option =
-      cmd->add_option("--context-min-angle", f.context_min_angle_deg,
-                      "Leave out context buildings smaller than this from every aperture (degrees; default 0.1 without the "
-                      "sun, 0 with it: a smaller building can still hide part of the sun's disk)")
-          ->check(CLI::Range(0.0, 179.0));
+  cmd->add_option("--context-min-angle", f.context_min_angle_deg,
+                  "Leave out context buildings smaller than this from every aperture (degrees; default 0.1), except those "
+                  "in the sun's beam, which may hide part of its disk")
+      ->check(CLI::Range(0.0, 179.0));
   cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file for per-grid statistics, the sky, the sun and what was left out");
   cmd->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");

@@ -4,7 +4,7 @@
 
 namespace daylit::cli {
 
-ModelInputs load_model(const ModelFiles& files, SkyModel sky) {
+ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optional<SunBeam>& sun) {
   if (!files.context.empty() && files.site.empty())
     throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
   ModelInputs in;
@@ -19,7 +19,7 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky) {
   if (!files.context.empty()) {
     const ContextBuildings buildings = read_context_buildings(files.context, *in.site);
     in.scene.notices.insert(in.scene.notices.end(), buildings.notices.begin(), buildings.notices.end());
-    in.context = place_context_buildings(buildings, in.grids, sky, files.context_min_angle_deg, in.scene);
+    in.context = place_context_buildings(buildings, in.grids, sky, files.context_min_angle_deg, in.scene, sun);
     in.scene.notices.insert(in.scene.notices.end(), in.context->notices.begin(), in.context->notices.end());
   }
   return in;
@@ -43,18 +43,20 @@ nlohmann::json site_json(const Site& site, const std::string& path) {
 }
 
 nlohmann::json context_json(const ContextPlacement& context, const std::string& path) {
-  return {{"path", path},
-          {"buildings_read", context.read},
-          {"placed", context.placed},
-          {"faces", context.faces},
-          {"left_out",
-           {{"holding_the_model", context.enclosing_model},
-            {"below_the_horizon", context.below_horizon},
-            {"behind_the_apertures", context.behind_apertures},
-            {"smaller_than_min_angle", context.too_small}}},
-          {"min_angle_deg", context.min_angular_size_deg},
-          {"sc_change_bound_percent", context.sc_change_bound_percent},
-          {"rule", context.rule}};
+  nlohmann::json j = {{"path", path},
+                      {"buildings_read", context.read},
+                      {"placed", context.placed},
+                      {"faces", context.faces},
+                      {"left_out",
+                       {{"holding_the_model", context.enclosing_model},
+                        {"below_the_horizon", context.below_horizon},
+                        {"behind_the_apertures", context.behind_apertures},
+                        {"smaller_than_min_angle", context.too_small}}},
+                      {"min_angle_deg", context.min_angular_size_deg},
+                      {"sc_change_bound_percent", context.sc_change_bound_percent},
+                      {"rule", context.rule}};
+  if (context.sun_beam_kept) j["kept_in_sun_beam"] = context.kept_in_sun_beam;
+  return j;
 }
 
 nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine) {

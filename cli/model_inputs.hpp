@@ -32,8 +32,9 @@ struct ModelInputs {
 };
 
 // Reads everything and places the context buildings (their bound on what leaving some out changes
-// is stated for `sky`). Throws daylit::Error naming the file and line of bad input.
-ModelInputs load_model(const ModelFiles& files, SkyModel sky);
+// is stated for `sky`; with a `sun`, every building that may shade its disk is kept). Throws
+// daylit::Error naming the file and line of bad input.
+ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optional<SunBeam>& sun = std::nullopt);
 
 nlohmann::json site_json(const Site& site, const std::string& path);
 nlohmann::json context_json(const ContextPlacement& context, const std::string& path);

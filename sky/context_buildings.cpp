@@ -452,7 +452,21 @@ struct ApertureView {
   double h_min = 0, h_max = 0;  // n·v over the vertices
   double z_min = 0;
   int sensor_side = 0;  // +1: every sensor has n·p > h_max; −1: every sensor n·p < h_min; 0: neither
+  std::vector<Vec3> along_sun;  // with a sun: the vertices projected along its direction s
+  double s_min = 0;             // min s·v over the vertices
 };
+
+// Whether the sphere (c, r) may meet the sun's beam through the aperture (place_context_buildings,
+// rule (c) with a sun). The margin of 1e-9 of the distances covers the rounding of the projections.
+bool meets_sun_beam(const Vec3& c, double r, const ApertureView& a, const SunBeam& sun) {
+  const Vec3& s = sun.direction;
+  double far = 0;  // D: the largest distance from c to an aperture vertex
+  for (const Vec3& v : *a.vertices) far = std::max(far, norm(c - v));
+  const double slack = 1e-9 * (far + r);
+  if (dot(s, c) + r + slack < a.s_min) return false;  // wholly behind the aperture, seen from the sun
+  const double reach = r + (far + r) * std::sin(sun.half_angle) + slack;
+  return distance_to_polygon(c - dot(s, c) * s, a.along_sun) <= reach;
+}
 
 }  // namespace
 
@@ -465,9 +479,12 @@ ContextBuildings read_context_buildings(const std::string& path, const Site& sit
 }
 
 ContextPlacement place_context_buildings(const ContextBuildings& context, const std::vector<SensorGrid>& grids,
-                                         SkyModel sky, double min_angular_size_deg, Scene& scene) {
+                                         SkyModel sky, double min_angular_size_deg, Scene& scene,
+                                         const std::optional<SunBeam>& sun) {
   if (!(min_angular_size_deg >= 0 && min_angular_size_deg < 180))
     throw Error(fmt::format("the context's minimum angular size must be in [0, 180) degrees, not {}", min_angular_size_deg));
+  if (sun && !(std::abs(norm(sun->direction) - 1) < 1e-9 && sun->half_angle >= 0 && sun->half_angle < std::numbers::pi / 2))
+    throw Error("the sun's beam needs a unit direction and a half-angle in [0, 90) degrees");
   constexpr double inf = std::numeric_limits<double>::infinity();
   ContextPlacement out;
   out.read = context.buildings.size();
@@ -478,8 +495,12 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
       "no higher than the aperture's lowest vertex or the lowest sensor (below the horizon), or it lies on the sensors' "
       "side of the aperture's plane (behind), or its bounding sphere (radius r, centre at distance d from the aperture) "
       "subtends 2 asin(r/(d - 2r)) < {:g} deg (too small; the change this makes to the sky component is bounded by "
-      "sc_change_bound_percent)",
-      min_angular_size_deg);
+      "sc_change_bound_percent){}",
+      min_angular_size_deg,
+      sun ? " and its sphere misses the sun's beam through the aperture, the rays towards the sun's disk (so nothing "
+            "left out shades the sun)"
+          : "");
+  out.sun_beam_kept = sun.has_value();
 
   // The model: sensors and apertures, and the box around them.
   Vec3 model_min{inf, inf, inf}, model_max{-inf, -inf, -inf};
@@ -509,6 +530,14 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
       }
     a.sensor_side = total > 0 && front == total ? 1 : (total > 0 && back == total ? -1 : 0);
     if (!is_finite(a.n)) a.sensor_side = 0;  // a degenerate aperture: the engine will reject it
+    if (sun) {
+      const Vec3& s = sun->direction;
+      a.s_min = inf;
+      for (const Vec3& v : aperture.polygon.vertices) {
+        a.along_sun.push_back(v - dot(s, v) * s);
+        a.s_min = std::min(a.s_min, dot(s, v));
+      }
+    }
     apertures.push_back(a);
   }
   const double floor_z = grids.empty() ? -inf : min_sensor_z;
@@ -539,7 +568,7 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
     const bool near = b.box_min.x <= model_max.x && model_min.x <= b.box_max.x && b.box_min.y <= model_max.y &&
                       model_min.y <= b.box_max.y && b.box_min.z <= model_max.z && model_min.z <= b.box_max.z;
     bool hidden = !near && !apertures.empty();
-    bool all_below = true, any_small = false;
+    bool all_below = true, any_small = false, in_sun_beam = false;
     double building_solid_angle = 0;
     if (hidden) {
       const Vec3 centre = 0.5 * (b.box_min + b.box_max);
@@ -559,6 +588,10 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
         if (min_angular_size_deg > 0 && d - 2 * radius > 0) {
           const double alpha = std::asin(std::min(1.0, radius / (d - 2 * radius)));
           if (2 * alpha < min_angular_size_deg * std::numbers::pi / 180) {  // (c) too small
+            if (sun && meets_sun_beam(centre, radius, a, *sun)) {
+              in_sun_beam = true, hidden = false;
+              break;
+            }
             const double s = std::sin(alpha / 2);
             building_solid_angle += 4 * std::numbers::pi * s * s;  // 2π(1 − cos α)
             any_small = true;
@@ -571,6 +604,7 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
     }
     if (!hidden) {
       ++out.placed;
+      out.kept_in_sun_beam += in_sun_beam;
       out.faces += b.faces.size();
       scene.occluders.insert(scene.occluders.end(), b.faces.begin(), b.faces.end());
     } else if (any_small) {
@@ -588,9 +622,12 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
   out.sc_change_bound_percent = 100 * solid_angle_sum / unobstructed_horizontal_irradiance(sky);
   out.notices.push_back(fmt::format(
       "{}: {} building{} read, {} placed ({} faces); left out: {} holding the model, {} below the horizon, {} behind "
-      "the apertures, {} smaller than {:g}° (changing the sky component by at most {:.2g} %)",
+      "the apertures, {} smaller than {:g}° (changing the sky component by at most {:.2g} %{}){}",
       context.path, out.read, out.read == 1 ? "" : "s", out.placed, out.faces, out.enclosing_model, out.below_horizon,
-      out.behind_apertures, out.too_small, min_angular_size_deg, out.sc_change_bound_percent));
+      out.behind_apertures, out.too_small, min_angular_size_deg, out.sc_change_bound_percent,
+      sun ? ", and the sun's not at all" : "",
+      out.kept_in_sun_beam > 0 ? fmt::format("; {} smaller ones kept because they lie in the sun's beam", out.kept_in_sun_beam)
+                               : ""));
   return out;
 }
 

@@ -36,6 +36,7 @@
 // so do the faces' SourceLocations, for errors found later by the visibility engine.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,16 +95,25 @@ struct ContextPlacement {
   std::size_t below_horizon = 0;     // left out (exact): too low to be seen above any sensor's horizon
   std::size_t behind_apertures = 0;  // left out (exact): behind every aperture (or below, for some)
   std::size_t too_small = 0;         // left out (bounded): smaller than the angular threshold
+  std::size_t kept_in_sun_beam = 0;  // placed although smaller than the threshold: they meet the sun's beam
   double min_angular_size_deg = 0;
   // Upper bound on the change of the sky component (percent) at any sensor caused by the buildings
   // left out as too small: 100 Σ_buildings Σ_apertures 2π(1 − cos α) L_max / E_h.
   double sc_change_bound_percent = 0;
   // Σ_buildings Σ_apertures 2π(1 − cos α) over the buildings left out as too small: an upper
   // bound on the solid angle they could hide from any sensor (for bounds under other skies and
-  // for the sun).
+  // for the sun when no SunBeam was given).
   double left_out_solid_angle_sr = 0;
+  bool sun_beam_kept = false;  // a SunBeam was given: nothing left out can hide any of the sun's disk
   std::string rule;  // the rules in words, for the summary
   std::vector<std::string> notices;
+};
+
+// The sun's disk seen from the model: the directions within half_angle of `direction` (a unit
+// vector towards the sun's centre).
+struct SunBeam {
+  Vec3 direction;
+  double half_angle = 0;
 };
 
 // Appends the faces of the buildings that may be seen from the sensors of `grids` through the
@@ -123,11 +133,19 @@ struct ContextPlacement {
 //        aperture: a sensor seeing a building point s through the aperture point q has
 //        |p − s| ≥ |q − s| ≥ d − r, so |p − c| ≥ d − 2r and the sphere fills a cone of half-angle
 //        α ≤ asin(r/(d − 2r)) around p.
+//    With a `sun`, (c) applies only to a building whose sphere also misses the sun's beam through
+//    the aperture, the points q + t·s' (q on the aperture, t ≥ 0, s' within the half-angle ρ of
+//    the sun's direction s): such a point within r of c has t = |x − q| ≤ D + r, D the largest
+//    distance from c to an aperture vertex, so projected along s it lies within (D + r) sin ρ of
+//    the projected aperture, and c within r + (D + r) sin ρ of it; and s·c ≥ min s·v − r. A
+//    building that fails either cannot shade any part of the disk at any sensor through that
+//    aperture; one that passes both is placed (counted in kept_in_sun_beam).
 //    A building hidden from every aperture is left out: as too small if (c) was needed for one
 //    aperture, else as below the horizon if (a) held for all, else as behind the apertures.
-// (a) and (b) change nothing in the sky component; (c) changes it by at most the bound reported.
-// min_angular_size_deg = 0 turns rule (c) off.
+// (a) and (b) change nothing in the sky component; (c) changes it by at most the bound reported,
+// and with a `sun` changes nothing of the sun's. min_angular_size_deg = 0 turns rule (c) off.
 ContextPlacement place_context_buildings(const ContextBuildings& context, const std::vector<SensorGrid>& grids,
-                                         SkyModel sky, double min_angular_size_deg, Scene& scene);
+                                         SkyModel sky, double min_angular_size_deg, Scene& scene,
+                                         const std::optional<SunBeam>& sun = std::nullopt);
 
 }  // namespace daylit
