@@ -13,43 +13,9 @@ namespace daylit {
 
 namespace {
 
-// ---- Elementary functions in the working precision (long double, or __float128) -------------
-
-inline long double r_sin(long double x) { return std::sin(x); }
-inline long double r_cos(long double x) { return std::cos(x); }
-inline long double r_atan2(long double y, long double x) { return std::atan2(y, x); }
-inline long double r_sqrt(long double x) { return std::sqrt(x); }
-inline long double r_log(long double x) { return std::log(x); }
-inline long double r_log1p(long double x) { return std::log1p(x); }
-inline long double r_abs(long double x) { return std::fabs(x); }
+using real::unit_roundoff;
 #ifdef DAYLIT_HAS_FLOAT128
 using real::quad;
-inline quad r_sin(quad x) { return sinq(x); }
-inline quad r_cos(quad x) { return cosq(x); }
-inline quad r_atan2(quad y, quad x) { return atan2q(y, x); }
-inline quad r_sqrt(quad x) { return sqrtq(x); }
-inline quad r_log(quad x) { return logq(x); }
-inline quad r_log1p(quad x) { return log1pq(x); }
-inline quad r_abs(quad x) { return fabsq(x); }
-#endif
-
-template <class R>
-R pi_of() {
-  return R(4) * r_atan2(R(1), R(1));
-}
-
-// Unit roundoff: 2^-64 (x87 long double), 2^-113 (__float128).
-template <class R>
-R unit_roundoff();
-template <>
-long double unit_roundoff<long double>() {
-  return 0x1p-64L;
-}
-#ifdef DAYLIT_HAS_FLOAT128
-template <>
-quad unit_roundoff<quad>() {
-  return quad(0x1p-113L);
-}
 #endif
 
 // A result with the sum of the absolute values of the terms that made it, to measure cancellation.
@@ -67,7 +33,7 @@ template <class R>
 R condition(const Sum<R>& s) {
   if (s.magnitude == 0) return R(1);
   if (s.value == 0) return R(1e300);
-  return std::max(R(1), s.magnitude / r_abs(s.value));
+  return std::max(R(1), s.magnitude / real::abs(s.value));
 }
 
 // ---- The cap of half-angle s ≤ π/2 cut by the horizon: arc integrals and Stokes sums ----------
@@ -101,14 +67,14 @@ class SmallCap {
   // converge: not with the pole on the rim). When every one of them is bounded by
   // `negligible` (the region far below the pole and n large), zero() says so and nothing is built.
   SmallCap(R w, R s, int k_lo, int k_hi, int m_f, R negligible, bool with_tail) {
-    const R pi = pi_of<R>();
-    cw_ = r_cos(w), sw_ = r_sin(w), cs_ = r_cos(s), ss_ = r_sin(s);
-    const R sin_half = r_sin(s / 2);
+    const R pi = real::pi<R>();
+    cw_ = real::cos(w), sw_ = real::sin(w), cs_ = real::cos(s), ss_ = real::sin(s);
+    const R sin_half = real::sin(s / 2);
     half_sin2_ = sin_half * sin_half;
     a_ = cs_ * cw_;
     beta_ = ss_ * sw_;
-    z_max_ = r_cos(w - s);
-    const R z_min = r_cos(w + s);
+    z_max_ = real::cos(w - s);
+    const R z_min = real::cos(w + s);
     pole_ = w < s ? 1 : 0;
     const bool on_boundary = w == s;
     if (!(s > 0) || !(z_max_ > 0)) {
@@ -117,15 +83,15 @@ class SmallCap {
     }
     clipped_ = z_min < 0;
     q2_ = z_max_ * -z_min;  // β² − a², negative when the circle does not cross the horizon
-    q_ = clipped_ ? r_sqrt(q2_) : R(0);
-    psi1_ = clipped_ ? r_atan2(q_, -a_) : pi;
+    q_ = clipped_ ? real::sqrt(q2_) : R(0);
+    psi1_ = clipped_ ? real::atan2(q_, -a_) : pi;
 
     // 1 − z_max = 2 sin²((w − s)/2) keeps ln z_max accurate near the pole.
-    const R half_gap = r_sin((w - s) / 2);
-    const R ln_zmax = z_max_ > R(0.5) ? r_log1p(-2 * half_gap * half_gap) : r_log(z_max_);
+    const R half_gap = real::sin((w - s) / 2);
+    const R ln_zmax = z_max_ > R(0.5) ? real::log1p(-2 * half_gap * half_gap) : real::log(z_max_);
     const int m_lo = m_f >= 0 ? std::min(k_lo, m_f) : k_lo;
     if (pole_ == 0 && !on_boundary && ln_zmax < 0 &&
-        r_log(4 * pi * R(k_hi + 2)) + R(std::max(m_lo, 0)) * ln_zmax < r_log(negligible)) {
+        real::log(4 * pi * R(k_hi + 2)) + R(std::max(m_lo, 0)) * ln_zmax < real::log(negligible)) {
       zero_ = true;
       return;
     }
@@ -135,7 +101,7 @@ class SmallCap {
     int tail_length = 0;
     tail_ok_ = with_tail && !on_boundary && ln_zmax < 0;
     if (tail_ok_) {
-      const R t = R(1.1) * r_log(unit_roundoff<R>() / 64) / ln_zmax + 8;
+      const R t = R(1.1) * real::log(unit_roundoff<R>() / 64) / ln_zmax + 8;
       const R budget = R(2) * R(k_hi + 2) + 20000;
       if (t > budget) tail_ok_ = false;
       else tail_length = int(t);
@@ -156,7 +122,7 @@ class SmallCap {
   int length() const { return m_; }
   R f(int m) const { return zero_ ? R(0) : f_[std::size_t(m)]; }
   // The horizon arc inside the cap (radians).
-  R horizon_arc() const { return zero_ || !clipped_ ? R(0) : 2 * r_atan2(q_, cs_); }
+  R horizon_arc() const { return zero_ || !clipped_ ? R(0) : 2 * real::atan2(q_, cs_); }
 
   // P(k) = (k + 1) ∫ z^k dΩ by the forward Stokes sum (Snyder eq. 16): odd k: Σ_{i odd ≤ k} J(i);
   // even k: I(0) + Σ_{2 ≤ i ≤ k even} J(i). I(0), the solid angle of the cut cap, by Gauss–Bonnet:
@@ -167,11 +133,11 @@ class SmallCap {
     if (zero_) return sum;
     if (k % 2 == 0) {
       if (clipped_) {
-        const R angle_gap = r_atan2(q_ * cw_ * 2 * half_sin2_, cs_ * cw_ * cw_ + q_ * q_);
+        const R angle_gap = real::atan2(q_ * cw_ * 2 * half_sin2_, cs_ * cw_ * cw_ + q_ * q_);
         const R rim = 4 * psi1_ * half_sin2_;
-        sum.add(2 * angle_gap + rim, 2 * r_abs(angle_gap) + rim);
+        sum.add(2 * angle_gap + rim, 2 * real::abs(angle_gap) + rim);
       } else {
-        const R cap = 4 * pi_of<R>() * half_sin2_;
+        const R cap = 4 * real::pi<R>() * half_sin2_;
         sum.add(cap, cap);
       }
     }
@@ -199,7 +165,7 @@ class SmallCap {
   void add_J(Sum<R>& sum, int i) const {
     const R d = ss_ * cw_, c = cs_ * sw_;
     const R t1 = ss_ * d * f_[std::size_t(i - 1)], t2 = -ss_ * c * g_[std::size_t(i - 1)];
-    sum.add(t1 + t2, r_abs(t1) + r_abs(t2));
+    sum.add(t1 + t2, real::abs(t1) + real::abs(t2));
     if (i == 1 && clipped_) {
       const R k = horizon_arc();
       sum.add(k, k);
@@ -275,14 +241,14 @@ struct Estimate {
 // by ~(n + 2)/z_max when the region is a sliver under the horizon's edge of the circle.
 template <class R>
 Estimate<R> clipped_cap_moment(R omega, R sigma, int n, bool times_cap_axis) {
-  const R pi = pi_of<R>(), two_pi = 2 * pi;
+  const R pi = real::pi<R>(), two_pi = 2 * pi;
   const bool big = sigma > pi / 2;
   const R w = big ? pi - omega : omega, s = big ? pi - sigma : sigma;
-  const R cos_omega = r_cos(omega), sin_sigma = r_sin(sigma);
+  const R cos_omega = real::cos(omega), sin_sigma = real::sin(sigma);
   const int k = times_cap_axis ? n - 1 : n;  // order of P needed; −1: none
   const R underflow = R(1e-300) * R(1e-30);  // below every double
   const R negligible =
-      big ? R(1e-40) * two_pi * (times_cap_axis ? r_abs(cos_omega) : R(1)) + underflow : underflow;
+      big ? R(1e-40) * two_pi * (times_cap_axis ? real::abs(cos_omega) : R(1)) + underflow : underflow;
 
   // The candidate of least cancellation with the arc integrals of `cap`.
   auto best_of = [&](const SmallCap<R>& cap) {
@@ -305,18 +271,18 @@ Estimate<R> clipped_cap_moment(R omega, R sigma, int n, bool times_cap_axis) {
       if (n == 0) {
         const R horizon = big ? two_pi - cap.horizon_arc() : cap.horizon_arc();
         const R t = cos_omega * horizon;
-        results.push_back({(rim + t) / 2, (rim + r_abs(t)) / 2});
+        results.push_back({(rim + t) / 2, (rim + real::abs(t)) / 2});
       } else {
         for (const Sum<R>& p : candidates)
           results.push_back(
-              {(cos_omega * p.value + rim) / R(n + 2), (r_abs(cos_omega) * p.magnitude + rim) / R(n + 2)});
+              {(cos_omega * p.value + rim) / R(n + 2), (real::abs(cos_omega) * p.magnitude + rim) / R(n + 2)});
       }
       if (!cap.zero() && cap.has_tail()) {
         const R pole = big ? 1 - cap.pole() : cap.pole();
         const R t0 = two_pi * cos_omega * pole, t1 = cap.q2() * cap.tail_f(n), t2 = cap.a() * cap.tail_f(n + 1),
                 t3 = -sin_sigma * sin_sigma * cap.tail_f(n + 2);
         results.push_back(
-            {(t0 + t1 + t2 + t3) / R(n + 2), (r_abs(t0) + r_abs(t1) + r_abs(t2) + r_abs(t3)) / R(n + 2)});
+            {(t0 + t1 + t2 + t3) / R(n + 2), (real::abs(t0) + real::abs(t1) + real::abs(t2) + real::abs(t3)) / R(n + 2)});
       }
     }
     Sum<R> best = results.front();
@@ -339,9 +305,9 @@ Estimate<R> clipped_cap_moment(R omega, R sigma, int n, bool times_cap_axis) {
     }
   }
   const R u = unit_roundoff<R>();
-  R error = u * condition(best) * (16 + 2 * r_sqrt(R(length)));
+  R error = u * condition(best) * (16 + 2 * real::sqrt(R(length)));
   if (!forward_only.zero() && forward_only.z_max() < R(0.5))
-    error += u * (r_abs(w) + r_abs(s)) / forward_only.z_max() * R(std::max(n, 0) + 2);
+    error += u * (real::abs(w) + real::abs(s)) / forward_only.z_max() * R(std::max(n, 0) + 2);
   return {best.value, error};
 }
 
@@ -374,7 +340,7 @@ Evaluation clipped_cap(const Vec3& axis, const Vec3& clip, double sigma, int n, 
       [&](auto zero) {
         using R = decltype(zero);
         const real::V3<R> a(axis), b(clip);
-        return r_atan2(real::norm(cross(a, b)), dot(a, b));
+        return real::atan2(real::norm(cross(a, b)), dot(a, b));
       },
       sigma, n, times_cap_axis);
 }

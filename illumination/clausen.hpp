@@ -12,34 +12,6 @@
 
 namespace daylit {
 
-// Elementary functions over double, long double and __float128 under one name, for kernels
-// templated on the precision.
-namespace real {
-using std::atanh;
-using std::cos;
-using std::log;
-using std::log1p;
-using std::sin;
-#ifdef DAYLIT_HAS_FLOAT128
-inline quad atanh(quad x) { return atanhq(x); }
-inline quad cos(quad x) { return cosq(x); }
-inline quad log(quad x) { return logq(x); }
-inline quad log1p(quad x) { return log1pq(x); }
-inline quad sin(quad x) { return sinq(x); }
-#endif
-template <class R>
-R pi() {
-  return R(3.14159265358979323846264338327950288L);
-}
-#ifdef DAYLIT_HAS_FLOAT128
-template <>
-inline quad pi<quad>() {
-  static const quad value = 4 * atanq(quad(1));  // M_PIq needs GNU literal suffixes
-  return value;
-}
-#endif
-}  // namespace real
-
 // Cl2(x) = −∫_0^x log|2 sin(t/2)| dt = Σ_k sin(kx)/k², for any real x (odd, period 2π, zero at
 // multiples of π). GSL's gsl_sf_clausen: within a few tens of ulp of max(|Cl2|, 1) over a period
 // (DESIGN.md §7; proven against MPFR in tests/test_clausen.cpp).

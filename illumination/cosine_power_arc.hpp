@@ -228,7 +228,7 @@ class CosinePowerArc {
     const R kappa = real::abs(wm_);
     R delta = real::atan2(-gamma_, kappa * Y_) - real::atan2(-beta_, kappa * X_);
     // The true increase lies in [0, π] for an arc of length θ ≤ π (tan has period π).
-    if (delta < R(-1.5707963267948966)) delta += R(2) * R(3.14159265358979323846264338327950288L);
+    if (delta < R(-1.5707963267948966)) delta += R(2) * real::pi<R>();
     return wm_ < 0 ? -delta : (wm_ > 0 ? delta : R(0));
   }
   R odd_series_times_wm() const {

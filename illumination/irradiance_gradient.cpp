@@ -15,16 +15,6 @@ namespace {
 
 using real::V3;
 
-// sin in every precision the kernels use (real_vector.hpp has no sin).
-inline double sine(double x) { return std::sin(x); }
-inline long double sine(long double x) { return std::sin(x); }
-inline double cosine(double x) { return std::cos(x); }
-inline long double cosine(long double x) { return std::cos(x); }
-#ifdef DAYLIT_HAS_FLOAT128
-inline real::quad sine(real::quad x) { return sinq(x); }
-inline real::quad cosine(real::quad x) { return cosq(x); }
-#endif
-
 template <class R>
 struct Complex {
   R re = 0, im = 0;
@@ -314,11 +304,11 @@ template <class R>
 VectorSum<R> exitance_boundary_sum(const SphericalRegion& region, const Vec3& origin, const Vec3& n_in, const Vec3& nu_in,
                                    double D, const ExitancePolynomial& M, double tolerance, bool& failed) {
   const V3<R> n(n_in), nu(nu_in), p(origin);
-  const R pi = R(3.14159265358979323846264338327950288L);
+  const R pi = real::pi<R>();
   VectorSum<R> sum;
   for_each_moving_edge<R>(region, origin, [&](const ArcEdge<R>& arc, const V3<R>& mu, const V3<R>& w) {
     const auto f = [&](R t) {
-      const V3<R> u = cosine(t) * arc.start + sine(t) * arc.start_tangent;
+      const V3<R> u = real::cos(t) * arc.start + real::sin(t) * arc.start_tangent;
       const V3<R> x = p + (R(D) / dot(nu, u)) * u;
       return evaluate(M, x) * dot(n, u) * dot(w, u);
     };

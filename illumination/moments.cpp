@@ -80,7 +80,7 @@ std::vector<Sum<R>> axial_moment_sums(const std::vector<CosinePowerArc<R>>& arcs
 // out an integer).
 template <class R>
 bool complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n, Sum<R>& out) {
-  const R two_pi = R(2) * R(3.14159265358979323846264338327950288L);
+  const R two_pi = R(2) * real::pi<R>();
   R winding = n % 2 == 0 ? sigma.value : R(0);
   for (const auto& arc : arcs) winding += n % 2 == 0 ? arc.odd_series_times_wm() : arc.even_series_times_wm();
   winding /= two_pi;

@@ -15,16 +15,40 @@
 
 namespace daylit::real {
 
+// Elementary functions over double, long double and __float128 under one name, for kernels
+// templated on the precision.
 using std::abs;
 using std::atan2;
+using std::atanh;
+using std::cos;
+using std::log;
+using std::log1p;
 using std::round;
+using std::sin;
 using std::sqrt;
 #ifdef DAYLIT_HAS_FLOAT128
 using quad = __float128;
 inline quad abs(quad x) { return fabsq(x); }
 inline quad atan2(quad y, quad x) { return atan2q(y, x); }
-inline quad sqrt(quad x) { return sqrtq(x); }
+inline quad atanh(quad x) { return atanhq(x); }
+inline quad cos(quad x) { return cosq(x); }
+inline quad log(quad x) { return logq(x); }
+inline quad log1p(quad x) { return log1pq(x); }
 inline quad round(quad x) { return roundq(x); }
+inline quad sin(quad x) { return sinq(x); }
+inline quad sqrt(quad x) { return sqrtq(x); }
+#endif
+
+template <class R>
+R pi() {
+  return R(3.14159265358979323846264338327950288L);
+}
+#ifdef DAYLIT_HAS_FLOAT128
+template <>
+inline quad pi<quad>() {
+  static const quad value = 4 * atanq(quad(1));  // M_PIq needs GNU literal suffixes
+  return value;
+}
 #endif
 
 // Unit roundoff u of R: 2^-53, 2^-64 (x87 long double) or 2^-113.
