@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "illumination/orthonormal_basis.hpp"
 #include "illumination/xoshiro256.hpp"
 
 namespace daylit {
@@ -23,16 +24,6 @@ double power(double x, int k) noexcept {
 
 // +1 or −1; a zero counts as positive, the same way wherever the same product is computed.
 int sign(double x) noexcept { return x >= 0 ? 1 : -1; }
-
-// An orthonormal basis {e1, e2} of the plane ⊥ unit n without a branch on a small component:
-// Duff et al., "Building an orthonormal basis, revisited", JCGT 6(1), 2017, listing 3.
-void orthonormal_basis(const Vec3& n, Vec3& e1, Vec3& e2) noexcept {
-  const double s = std::copysign(1.0, n.z);
-  const double a = -1.0 / (s + n.z);
-  const double b = n.x * n.y * a;
-  e1 = {1 + s * n.x * n.x * a, s * b, -s * n.x};
-  e2 = {b, s + n.y * n.y * a, -n.y};
-}
 
 // 1 − cos of the angle between unit vectors, from the chord: keeps its digits for tiny angles.
 double cap_height(const Vec3& axis, const Vec3& u) noexcept {

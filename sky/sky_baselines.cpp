@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "geometry/polygon.hpp"
+#include "illumination/glass_transmittance.hpp"
+#include "illumination/orthonormal_basis.hpp"
 #include "illumination/xoshiro256.hpp"
 
 namespace daylit {
@@ -31,21 +33,6 @@ bool box_hit(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inverse)
     t_max = std::min(t_max, std::max(t1, t2));
   }
   return t_min <= t_max;
-}
-
-double horner(const std::vector<double>& c, double x) noexcept {
-  double y = 0;
-  for (auto k = c.size(); k-- > 0;) y = y * x + c[k];
-  return y;
-}
-
-// An orthonormal basis {e1, e2} of the plane ⊥ unit n (Duff et al., JCGT 6(1), 2017, listing 3).
-void orthonormal_basis(const Vec3& n, Vec3& e1, Vec3& e2) noexcept {
-  const double s = std::copysign(1.0, n.z);
-  const double a = -1.0 / (s + n.z);
-  const double b = n.x * n.y * a;
-  e1 = {1 + s * n.x * n.x * a, s * b, -s * n.x};
-  e2 = {b, s + n.y * n.y * a, -n.y};
 }
 
 // μ ∈ [0, 1] with (3μ² + 4μ³)/7 = ξ: the inverse of the cumulative distribution of the cosine of
@@ -185,7 +172,8 @@ double RayScene::transmittance(const Vec3& o, const Vec3& u) const noexcept {
   const Vec3 inverse{1 / u.x, 1 / u.y, 1 / u.z};
   for (const ApertureFace& a : apertures_) {
     if (!box_hit(a.face.box_min, a.face.box_max, o, inverse) || !hits(a.face, o, u)) continue;
-    total += a.angular.empty() ? a.transmittance : horner(a.angular, std::abs(dot(a.face.normal, u)) / norm(u));
+    total += a.angular.empty() ? a.transmittance
+                               : evaluate_polynomial(a.angular, std::abs(dot(a.face.normal, u)) / norm(u));
   }
   return total;
 }
@@ -244,7 +232,7 @@ struct SkyIntegrand {
 
   double operator()(const Vec3& u) const noexcept {
     const double l = overcast ? (1 + 2 * u.z) / 3 : 1.0;
-    const double t = angular ? horner(*angular, std::abs(dot(pane_normal, u))) : transmittance;
+    const double t = angular ? evaluate_polynomial(*angular, std::abs(dot(pane_normal, u))) : transmittance;
     return l * t * dot(n, u);
   }
 };
