@@ -41,15 +41,19 @@ expected='{"id":1,"value":0.5235987755982989}
 {"id":"r5","value":6.96406586360*e-05}
 {"error":"*polygon regions only","id":"r6"}'
 failures=0
+# The answers, line by line, against glob patterns, and their count.
+check_answers() {  # what, answers, patterns (one per line), count
+  local i=0 want got
+  while IFS= read -r want; do
+    i=$((i + 1))
+    got=$(printf '%s\n' "$2" | sed -n "${i}p")
+    # shellcheck disable=SC2053
+    if [[ "$got" != $want ]]; then echo "FAIL $1 line $i: got $got, expected $want"; failures=1; fi
+  done <<< "$3"
+  [ "$(printf '%s\n' "$2" | wc -l)" -eq "$4" ] || { echo "FAIL: not $4 $1 answers"; failures=1; }
+}
 [ "$status" -eq 0 ] || { echo "FAIL exit status $status"; failures=1; }
-i=0
-while IFS= read -r want; do
-  i=$((i + 1))
-  got=$(printf '%s\n' "$out" | sed -n "${i}p")
-  # shellcheck disable=SC2053
-  if [[ "$got" != $want ]]; then echo "FAIL line $i: got $got, expected $want"; failures=1; fi
-done <<< "$expected"
-[ "$(printf '%s\n' "$out" | wc -l)" -eq 15 ] || { echo "FAIL: not 15 answers"; failures=1; }
+check_answers moment "$out" "$expected" 15
 # Irradiance queries: a 1 × 2 luminaire at z = 1.5 seen from (0.3, 0.4, 0.2), uniform (M = 2), behind a
 # plate whose edge cuts its shadow across it, and with M = 1 + x/2 − y/4; then the errors (origin in the
 # luminaire's plane asked for a gradient, a zero normal, a degree above the limit, a bad exitance).
@@ -74,13 +78,6 @@ irr_expected='{"gradient":\[0.1304224997740*,0.2235623482397*,0.4223374883540*\]
 {"error":"normal must be non-zero","id":"e2"}
 {"error":"exitance.polynomial\[0\]*degree above*","id":"e3"}
 {"error":"exitance must be*","id":"e4"}'
-i=0
-while IFS= read -r want; do
-  i=$((i + 1))
-  got=$(printf '%s\n' "$irr" | sed -n "${i}p")
-  # shellcheck disable=SC2053
-  if [[ "$got" != $want ]]; then echo "FAIL irradiance line $i: got $got, expected $want"; failures=1; fi
-done <<< "$irr_expected"
-[ "$(printf '%s\n' "$irr" | wc -l)" -eq 8 ] || { echo "FAIL: not 8 irradiance answers"; failures=1; }
+check_answers irradiance "$irr" "$irr_expected" 8
 echo "$failures failures"
 [ "$failures" -eq 0 ]

@@ -15,21 +15,12 @@
 #include "test_scenes.hpp"
 
 using namespace daylit;
+using test::kWindow;
 using test::polygon;
+using test::reveal;
+using test::wall_with_seam_hole;
 
 namespace {
-
-const std::vector<Vec3> kWindow{{0, 0, 1}, {2, 0, 1}, {2, 0, 2}, {0, 0, 2}};
-
-Polygon wall_with_seam_hole() {
-  return polygon({{-3, 0, 0}, {5, 0, 0}, {5, 0, 3}, {-3, 0, 3}, {-3, 0, 1}, {0, 0, 1}, {0, 0, 2}, {2, 0, 2}, {2, 0, 1}, {0, 0, 1}, {-3, 0, 1}},
-                 "wall");
-}
-
-std::vector<Polygon> reveal(double d) {
-  return {polygon({{0, 0, 1}, {0, -d, 1}, {0, -d, 2}, {0, 0, 2}}, "left"), polygon({{2, 0, 1}, {2, 0, 2}, {2, -d, 2}, {2, -d, 1}}, "right"),
-          polygon({{0, 0, 1}, {2, 0, 1}, {2, -d, 1}, {0, -d, 1}}, "sill"), polygon({{0, 0, 2}, {0, -d, 2}, {2, -d, 2}, {2, 0, 2}}, "head")};
-}
 
 struct Case {
   const char* name;

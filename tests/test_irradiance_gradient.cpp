@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 
 #include "geometry/visibility.hpp"
@@ -77,10 +78,12 @@ Vec3 richardson_gradient(const F& f, const Vec3& p, double h) {
 
 double relative_difference(const Vec3& a, const Vec3& b) { return norm(a - b) / norm(b); }
 
-// ∇_p of ∫ M cosθ_r cosθ_l /(π r²) dA over an unoccluded parallelogram wholly in front of the
-// receiver, by differentiating the integrand: with d = x − p, q = ν·(p − x) > 0 (ν the unit normal
-// facing p), K = (n·d) q /(π r⁴) and ∇_p K = [(n·d) ν − q n]/(π r⁴) + 4 (n·d) q d /(π r⁶).
-Vec3 quadrature_gradient(const Vec3& p, const Vec3& n, const Vec3& origin, const Vec3& e1, const Vec3& e2, int panels = 8) {
+// ∇_p of ∫ M(x) cosθ_r cosθ_l /(π r²) dA over an unoccluded parallelogram wholly in front of the
+// receiver, by differentiating the integrand (M does not depend on p in the area parametrisation):
+// with d = x − p, q = ν·(p − x) > 0 (ν the unit normal facing p), K = (n·d) q /(π r⁴) and
+// ∇_p K = [(n·d) ν − q n]/(π r⁴) + 4 (n·d) q d /(π r⁶). M is 1 unless given.
+Vec3 quadrature_gradient(const Vec3& p, const Vec3& n, const Vec3& origin, const Vec3& e1, const Vec3& e2, int panels = 8,
+                         const std::function<long double(const LVec3&)>& M = {}) {
   Vec3 nu = normalized(cross(e1, e2));
   if (dot(nu, p - origin) < 0) nu = -1.0 * nu;
   Vec3 g;
@@ -93,7 +96,8 @@ Vec3 quadrature_gradient(const Vec3& p, const Vec3& n, const Vec3& origin, const
           const long double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
           const long double nd = n.x * d[0] + n.y * d[1] + n.z * d[2];
           const long double q = -(nu.x * d[0] + nu.y * d[1] + nu.z * d[2]);
-          return ((nd * nu[a] - q * n[a]) / (r2 * r2) + 4 * nd * q * d[a] / (r2 * r2 * r2)) / std::numbers::pi_v<long double>;
+          return (M ? M(x) : 1.0L) * ((nd * nu[a] - q * n[a]) / (r2 * r2) + 4 * nd * q * d[a] / (r2 * r2 * r2)) /
+                 std::numbers::pi_v<long double>;
         },
         panels, 24));
   }
@@ -211,27 +215,10 @@ double evaluate(const ExitancePolynomial& M, const LVec3& x) {
   return double(sum);
 }
 
-// ∫ M(x) ∇_p K dA (M does not depend on p in the area parametrisation), as quadrature_gradient.
+// The same with the exitance polynomial M.
 Vec3 quadrature_gradient(const ExitancePolynomial& M, const Vec3& p, const Vec3& n, const Vec3& origin, const Vec3& e1,
                          const Vec3& e2) {
-  Vec3 nu = normalized(cross(e1, e2));
-  if (dot(nu, p - origin) < 0) nu = -1.0 * nu;
-  Vec3 g;
-  double* c[3] = {&g.x, &g.y, &g.z};
-  for (int a = 0; a < 3; ++a) {
-    *c[a] = double(test::integrate_parallelogram(
-        test::lvec(origin), test::lvec(e1), test::lvec(e2),
-        [&](const LVec3& x) {
-          const long double d[3] = {x.x - p.x, x.y - p.y, x.z - p.z};
-          const long double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-          const long double nd = n.x * d[0] + n.y * d[1] + n.z * d[2];
-          const long double q = -(nu.x * d[0] + nu.y * d[1] + nu.z * d[2]);
-          return evaluate(M, x) * ((nd * nu[a] - q * n[a]) / (r2 * r2) + 4 * nd * q * d[a] / (r2 * r2 * r2)) /
-                 std::numbers::pi_v<long double>;
-        },
-        8, 24));
-  }
-  return g;
+  return quadrature_gradient(p, n, origin, e1, e2, 8, [&](const LVec3& x) { return evaluate(M, x); });
 }
 
 }  // namespace

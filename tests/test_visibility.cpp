@@ -20,7 +20,10 @@ namespace {
 
 constexpr long double kEout = 7 * 3.141592653589793238462643383279502884L / 9;
 
+using test::kWindow;
 using test::polygon;
+using test::reveal;
+using test::wall_with_seam_hole;
 
 double sc_in(const Scene& scene, const Vec3& p, GeometryMode mode, const Vec3& n) {
   const VisibilityEngine engine(scene, mode);
@@ -57,22 +60,6 @@ void record(const char* what, double exact, double floating, long double referen
 
 double relative_error(double value, long double reference) {
   return reference == 0 ? std::abs(value) : double(std::abs((long double)value - reference) / std::abs(reference));
-}
-
-// The window of these tests: y = 0, x ∈ [0, 2], z ∈ [1, 2]; the room is at y > 0.
-const std::vector<Vec3> kWindow{{0, 0, 1}, {2, 0, 1}, {2, 0, 2}, {0, 0, 2}};
-
-// A wall in the plane of the window, x ∈ [−3, 5], z ∈ [0, 3], with the window cut out by a seam:
-// the outer boundary, in along the cut, around the hole the other way, and back out.
-Polygon wall_with_seam_hole() {
-  return polygon({{-3, 0, 0}, {5, 0, 0}, {5, 0, 3}, {-3, 0, 3}, {-3, 0, 1}, {0, 0, 1}, {0, 0, 2}, {2, 0, 2}, {2, 0, 1}, {0, 0, 1}, {-3, 0, 1}},
-                 "wall");
-}
-
-// Four faces of a reveal of depth d outside the window (y ∈ [−d, 0]).
-std::vector<Polygon> reveal(double d) {
-  return {polygon({{0, 0, 1}, {0, -d, 1}, {0, -d, 2}, {0, 0, 2}}, "left"), polygon({{2, 0, 1}, {2, 0, 2}, {2, -d, 2}, {2, -d, 1}}, "right"),
-          polygon({{0, 0, 1}, {2, 0, 1}, {2, -d, 1}, {0, -d, 1}}, "sill"), polygon({{0, 0, 2}, {0, -d, 2}, {2, -d, 2}, {2, 0, 2}}, "head")};
 }
 
 // What a sensor at p (room side, y > 0) sees through the window with a reveal of depth d: the
