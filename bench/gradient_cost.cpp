@@ -21,7 +21,8 @@
 
 #include "illumination/irradiance_gradient.hpp"
 #include "illumination/moments.hpp"
-#include "sky/sky_component.hpp"
+#include "materials/scene_materials.hpp"
+#include "simulation/sky_component.hpp"
 
 using namespace daylit;
 

@@ -13,7 +13,8 @@
 #include <cstdio>
 #include <string>
 
-#include "sky/sky_component.hpp"
+#include "materials/scene_materials.hpp"
+#include "simulation/sky_component.hpp"
 
 using namespace daylit;
 

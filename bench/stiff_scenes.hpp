@@ -23,7 +23,7 @@
 
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
 
 namespace daylit::stiff {
 

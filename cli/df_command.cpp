@@ -11,13 +11,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/model_inputs.hpp"
-#include "cli/progress_bar.hpp"
-#include "cli/reports.hpp"
-#include "cli/staged_output.hpp"
+#include "simulation/model_inputs.hpp"
+#include "report/progress_bar.hpp"
+#include "report/model_reports.hpp"
+#include "report/reports.hpp"
+#include "report/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit::cli {
 

@@ -18,13 +18,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/model_inputs.hpp"
-#include "cli/progress_bar.hpp"
-#include "cli/reports.hpp"
-#include "cli/staged_output.hpp"
+#include "simulation/model_inputs.hpp"
+#include "report/progress_bar.hpp"
+#include "report/model_reports.hpp"
+#include "report/reports.hpp"
+#include "report/staged_output.hpp"
 #include "geometry/error.hpp"
-#include "illumination/glass_transmittance.hpp"
-#include "sky/illuminance.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "simulation/illuminance.hpp"
 #include "sky/solar_position.hpp"
 
 namespace daylit::cli {

@@ -11,11 +11,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/eval_command.hpp"
+#include "simulation/eval_queries.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string line(reinterpret_cast<const char*>(data), size);
-  const std::string answer = daylit::cli::answer_line(line, "fuzz:1");
+  const std::string answer = daylit::answer_line(line, "fuzz:1");
   const auto finding = [&](const char* what) {
     std::fprintf(stderr, "%s: %s\n", what, answer.c_str());
     std::abort();

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 #include "geometry/rad_reader.hpp"
 #include "geometry/scene.hpp"

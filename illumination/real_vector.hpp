@@ -8,9 +8,10 @@
 
 #include "geometry/vec3.hpp"
 
-#if defined(__SIZEOF_FLOAT128__) && !defined(__clang__)
+// DAYLIT_HAS_FLOAT128 comes from the build (CMake option DAYLIT_FLOAT128), never from sniffing
+// the compiler: a target that uses it links libquadmath.
+#ifdef DAYLIT_HAS_FLOAT128
 #include <quadmath.h>
-#define DAYLIT_HAS_FLOAT128 1
 #endif
 
 namespace daylit::real {

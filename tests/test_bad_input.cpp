@@ -15,14 +15,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/eval_command.hpp"
+#include "simulation/eval_queries.hpp"
+#include "materials/scene_materials.hpp"
 #include "geometry/input_checks.hpp"
 #include "geometry/rad_reader.hpp"
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "illumination/solid_angle.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
 
 using namespace daylit;
@@ -70,7 +71,7 @@ std::string random_bytes(std::mt19937& rng, std::size_t size) {
 }
 
 nlohmann::json eval(const std::string& line, const std::string& where = "q.jsonl:7") {
-  const std::string answer = cli::answer_line(line, where);
+  const std::string answer = answer_line(line, where);
   REQUIRE(answer.find('\n') == std::string::npos);
   return nlohmann::json::parse(answer);
 }

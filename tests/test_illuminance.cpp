@@ -10,8 +10,8 @@
 #include <numbers>
 
 #include "test_scenes.hpp"
-#include "illumination/glass_transmittance.hpp"
-#include "sky/illuminance.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "simulation/illuminance.hpp"
 
 using namespace daylit;
 using test::polygon;

@@ -11,13 +11,13 @@
 #include <numbers>
 
 #include "geometry/visibility.hpp"
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
 #include "illumination/irradiance_gradient.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/real_vector.hpp"
 #include "reference_quadrature.hpp"
-#include "sky/grid_refinement.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/grid_refinement.hpp"
+#include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
 
 using namespace daylit;

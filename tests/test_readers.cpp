@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "materials/scene_materials.hpp"
 #include "geometry/rad_reader.hpp"
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "sky/context_buildings.hpp"
-#include "sky/illuminance.hpp"
+#include "simulation/illuminance.hpp"
 #include "sky/site.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
 
 using namespace daylit;

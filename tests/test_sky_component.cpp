@@ -10,8 +10,8 @@
 
 #include "reference_quadrature.hpp"
 #include "test_scenes.hpp"
-#include "illumination/glass_transmittance.hpp"
-#include "sky/sky_component.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "simulation/sky_component.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;

@@ -14,7 +14,7 @@
 
 #include "bench/stiff_scenes.hpp"
 #include "reference_quadrature.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 using namespace daylit;
 

@@ -11,7 +11,7 @@
 #include "geometry/convex_pieces.hpp"
 #include "reference_quadrature.hpp"
 #include "test_scenes.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
 
 using namespace daylit;

@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <mutex>
 
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit {
 

@@ -1,4 +1,4 @@
-#include "sky/sky_baselines.hpp"
+#include "bench/sky_baselines.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "geometry/polygon.hpp"
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "illumination/xoshiro256.hpp"
 

@@ -9,8 +9,8 @@
 
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
-#include "sky/grid_refinement.hpp"
-#include "sky/grid_statistics.hpp"
+#include "simulation/grid_refinement.hpp"
+#include "simulation/grid_statistics.hpp"
 
 namespace daylit::cli {
 

@@ -23,10 +23,11 @@
 
 #include <fmt/format.h>
 
-#include "cli/bench_suites.hpp"
-#include "cli/plot.hpp"
-#include "cli/progress_bar.hpp"
-#include "cli/staged_output.hpp"
+#include "bench/bench_suites.hpp"
+#include "report/plot.hpp"
+#include "report/progress_bar.hpp"
+#include "report/staged_output.hpp"
+#include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 #include "sky/cie_sky.hpp"
 #include "geometry/scene.hpp"

@@ -13,7 +13,7 @@
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "sky/cie_sky.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 #include "sky/sky_model.hpp"
 
 namespace daylit {

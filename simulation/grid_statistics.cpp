@@ -1,4 +1,4 @@
-#include "sky/grid_statistics.hpp"
+#include "simulation/grid_statistics.hpp"
 
 #include <algorithm>
 #include <numeric>

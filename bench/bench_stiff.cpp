@@ -15,11 +15,11 @@
 #include <fmt/format.h>
 
 #include "bench/stiff_scenes.hpp"
-#include "cli/bench_suites.hpp"
-#include "cli/progress_bar.hpp"
-#include "cli/staged_output.hpp"
+#include "bench/bench_suites.hpp"
+#include "report/progress_bar.hpp"
+#include "report/staged_output.hpp"
 #include "geometry/error.hpp"
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit::cli {
 

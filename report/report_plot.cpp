@@ -15,7 +15,7 @@
 
 #include <fmt/format.h>
 
-#include "cli/plot.hpp"
+#include "report/plot.hpp"
 #include "geometry/error.hpp"
 
 namespace daylit::cli {

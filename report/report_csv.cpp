@@ -1,7 +1,7 @@
 #include <fmt/format.h>
 #include <cstdio>
 
-#include "cli/reports.hpp"
+#include "report/reports.hpp"
 #include "geometry/error.hpp"
 
 namespace daylit::cli {

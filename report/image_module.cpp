@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "cli/plot.hpp"
-#include "cli/reports.hpp"
+#include "report/plot.hpp"
+#include "report/reports.hpp"
 #include "geometry/error.hpp"
 
 namespace daylit::cli {

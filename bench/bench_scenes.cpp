@@ -36,13 +36,14 @@
 
 #include <fmt/format.h>
 
-#include "cli/bench_suites.hpp"
-#include "cli/plot.hpp"
-#include "cli/progress_bar.hpp"
-#include "cli/staged_output.hpp"
+#include "bench/bench_suites.hpp"
+#include "report/plot.hpp"
+#include "report/progress_bar.hpp"
+#include "report/staged_output.hpp"
+#include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
-#include "sky/sky_baselines.hpp"
-#include "sky/sky_component.hpp"
+#include "bench/sky_baselines.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit::cli {
 

@@ -1,10 +1,10 @@
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 #include <cmath>
 #include <string>
 
 #include "illumination/irradiance_gradient.hpp"
-#include "sky/sensor_loop.hpp"
+#include "simulation/sensor_loop.hpp"
 
 namespace daylit {
 

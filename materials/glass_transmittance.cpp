@@ -1,6 +1,7 @@
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
 
 #include "illumination/least_squares.hpp"
+#include "materials/radiance_luminance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +24,6 @@ double max_slope(const std::vector<double>& c) {
 }
 
 namespace {
-
-constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
 
 // Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples
 // (the well-conditioned basis), then the monomial coefficients of the sum.
@@ -79,7 +78,7 @@ double glass_transmittance(const GlassOptics& glass, double mu) {
   for (int c = 0; c < 3; ++c) {
     const double d = std::pow(glass.transmissivity[c], 1 / cos_t);
     const double t = 0.5 * (1 - rs) * (1 - rs) * d / (1 - rs * rs * d * d) + 0.5 * (1 - rp) * (1 - rp) * d / (1 - rp * rp * d * d);
-    total += kLuminanceWeights[c] * t;
+    total += kRadianceLuminanceWeights[c] * t;
   }
   return total;
 }

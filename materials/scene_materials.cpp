@@ -1,18 +1,13 @@
-#include "geometry/scene.hpp"
+#include "materials/scene_materials.hpp"
 
 #include <cstdio>
 
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "materials/radiance_luminance.hpp"
 
 namespace daylit {
 
 namespace {
-
-constexpr double kLuminanceWeights[3] = {0.265, 0.670, 0.065};
-
-double luminance(const std::vector<double>& reals) {
-  return kLuminanceWeights[0] * reals[0] + kLuminanceWeights[1] * reals[1] + kLuminanceWeights[2] * reals[2];
-}
 
 std::string format_fraction(double x) {
   char buf[32];
@@ -22,20 +17,15 @@ std::string format_fraction(double x) {
 
 }  // namespace
 
-double glass_normal_transmittance(const Material& glass) {
-  const double n = glass.reals.size() > 3 ? glass.reals[3] : 1.52;
-  const double r = ((n - 1) / (n + 1)) * ((n - 1) / (n + 1));
-  double total = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double t = glass.reals[c];
-    total += kLuminanceWeights[c] * t * (1 - r) * (1 - r) / (1 - r * r * t * t);
-  }
-  return total;
+GlassOptics glass_optics(const Material& glass) {
+  const auto& r = glass.reals;
+  return {{r[0], r[1], r[2]}, r.size() > 3 ? r[3] : 1.52};
 }
 
 Scene assemble_scene(const RadContent& content) {
   Scene scene;
   scene.notices = content.notices;
+  scene.materials = content.materials;
   std::vector<std::string> described;
   auto describe_once = [&](const Material& m, const std::string& text) {
     for (const auto& d : described)
@@ -49,10 +39,9 @@ Scene assemble_scene(const RadContent& content) {
     const Material* material = it == content.materials.end() ? nullptr : &it->second;
     const std::string type = material ? material->type : "void";
     if (type == "glass") {
-      const double t = glass_normal_transmittance(*material);
-      const auto& r = material->reals;
-      const TransmittancePolynomial fit =
-          fit_glass_transmittance(GlassOptics{{r[0], r[1], r[2]}, r.size() > 3 ? r[3] : 1.52});
+      const GlassOptics optics = glass_optics(*material);
+      const double t = glass_transmittance(optics, 1.0);
+      const TransmittancePolynomial fit = fit_glass_transmittance(optics);
       char text[256];
       std::snprintf(text, sizeof text,
                     "': transmittance %.4f at normal incidence, falling with the angle of incidence as Radiance's "
@@ -65,7 +54,7 @@ Scene assemble_scene(const RadContent& content) {
         scene.apertures.push_back({poly, 1.0});
       } else if (type == "trans") {
         const auto& a = material->reals;
-        const double t = (1 - a[3]) * a[5] * luminance(a);
+        const double t = (1 - a[3]) * a[5] * radiance_luminance(a[0], a[1], a[2]);
         describe_once(*material, "trans '" + material->name + "': transmittance " + format_fraction(t) +
                                      ", its diffuse part treated as clear");
         scene.apertures.push_back({poly, t});

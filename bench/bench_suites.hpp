@@ -1,5 +1,5 @@
 #pragma once
-// What the suites of `daylit bench` share (bench_command.cpp registers them): their options, entry
+// What the suites of `daylit bench` share (cli/bench_command.cpp registers them): their options, entry
 // points, and small helpers for timing and progress.
 
 #include <time.h>
@@ -17,6 +17,9 @@ struct BenchOptions {
   std::string samples = "samples";  // `scenes`: the folder holding office/ and hall/
 };
 
+// `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
+// per edge.
+int run_bench_kernels(const BenchOptions& options);
 // `daylit bench scenes`: error against run time on the bundled samples, and how run time grows.
 int run_bench_scenes(const BenchOptions& options);
 // `daylit bench stiff`: exact and float geometry against independent references on stiff scenes.

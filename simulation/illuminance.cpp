@@ -1,4 +1,4 @@
-#include "sky/illuminance.hpp"
+#include "simulation/illuminance.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -6,9 +6,9 @@
 
 #include "geometry/error.hpp"
 #include "illumination/cap_clip.hpp"
-#include "illumination/glass_transmittance.hpp"
+#include "materials/glass_transmittance.hpp"
 #include "illumination/moments.hpp"
-#include "sky/sensor_loop.hpp"
+#include "simulation/sensor_loop.hpp"
 
 namespace daylit {
 

@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "cli/reports.hpp"
+#include "report/reports.hpp"
 #include "geometry/error.hpp"
 
 namespace daylit::cli {

@@ -1,4 +1,4 @@
-#include "sky/grid_refinement.hpp"
+#include "simulation/grid_refinement.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "sky/sky_component.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit {
 

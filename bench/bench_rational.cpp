@@ -25,9 +25,9 @@
 
 #include <fmt/format.h>
 
-#include "cli/bench_suites.hpp"
-#include "cli/plot.hpp"
-#include "cli/staged_output.hpp"
+#include "bench/bench_suites.hpp"
+#include "report/plot.hpp"
+#include "report/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "illumination/clausen.hpp"
 #include "illumination/polynomial_luminaire.hpp"

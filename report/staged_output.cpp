@@ -1,4 +1,4 @@
-#include "cli/staged_output.hpp"
+#include "report/staged_output.hpp"
 
 #include <unistd.h>
 

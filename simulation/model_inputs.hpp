@@ -1,13 +1,11 @@
 #pragma once
 // What `daylit df` and `daylit illuminance` both read: the scene, its apertures, the sensor grids,
-// and optionally the site and the context buildings placed around the model; and the summary
-// sections that describe them.
+// and optionally the site and the context buildings placed around the model (the summary sections
+// that describe them are report/model_reports.hpp).
 
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
@@ -16,7 +14,7 @@
 #include "sky/site.hpp"
 #include "sky/sky_model.hpp"
 
-namespace daylit::cli {
+namespace daylit {
 
 struct ModelFiles {
   std::vector<std::string> scene_files, aperture_files, grid_files;
@@ -36,9 +34,4 @@ struct ModelInputs {
 // daylit::Error naming the file and line of bad input.
 ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optional<SunBeam>& sun = std::nullopt);
 
-nlohmann::json site_json(const Site& site, const std::string& path);
-nlohmann::json context_json(const ContextPlacement& context, const std::string& path);
-nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine);
-nlohmann::json counters_json(const VisibilityCounters& c);
-
-}  // namespace daylit::cli
+}  // namespace daylit

@@ -1,0 +1,41 @@
+#pragma once
+// The diffuse reflectance of an opaque surface, from its Radiance material: what the reflected
+// components (DESIGN.md §4) take as the surface's ρ. Radiance's materials reflect in parts
+// (diffuse, specular; trans also transmits); a radiosity solution carries Lambertian exitance only,
+// so every part is either reflected diffusely or counted as lost, and the description says which.
+//
+//   plastic  R G B spec rough: diffuse (1 − spec)·grey(RGB), specular spec (uncoloured). Both are
+//            reflected diffusely: ρ = (1 − spec)·grey + spec. The energy is Radiance's; only the
+//            direction of the specular lobe is not kept (exact for spec = 0, the common case).
+//   metal    R G B spec rough: diffuse (1 − spec)·grey, specular spec·grey (coloured): ρ = grey,
+//            reflected diffusely as plastic's specular part is.
+//   trans    R G B spec rough τ τ_s: reflected (1 − spec)(1 − τ)·grey + spec, diffusely; the
+//            transmitted part (1 − spec)·τ·grey passes through the surface in Radiance. Here a
+//            trans surface in a scene file is opaque: its transmitted part is lost, and the
+//            description states that fraction (a bound on the light not passed on).
+//   void     (the null modifier) and glow/light (emitters: the sky comes from --sky): black.
+//   mirror   specular only: not representable; an error when reflections are computed.
+//
+// grey(RGB) is Radiance's luminance weighting (radiance_luminance.hpp).
+
+#include <optional>
+#include <string>
+
+#include "geometry/rad_reader.hpp"
+
+namespace daylit {
+
+struct SurfaceReflectance {
+  double reflectance = 0;          // diffuse, in [0, 1)
+  double transmittance_lost = 0;   // trans: the transmitted fraction counted as absorbed
+  double specular_as_diffuse = 0;  // the specular part folded into `reflectance`
+  std::string description;         // one line for notices and the summary: how ρ was obtained
+};
+
+// The surface's reflectance from its material (nullptr: no material, or the null modifier `void`).
+// Throws daylit::Error naming the material's file and line for a mirror (not representable), and
+// for a reflectance outside [0, 1) (a surface reflecting all the light it receives makes the
+// radiosity equation singular; Radiance's materials above 1 create light).
+SurfaceReflectance surface_reflectance(const Material* material);
+
+}  // namespace daylit

@@ -1,0 +1,21 @@
+#pragma once
+// The summary sections that describe a model: its site, the context buildings placed and left out,
+// the scene (occluders, apertures, notices) and what the visibility routine did.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/scene.hpp"
+#include "geometry/visibility.hpp"
+#include "sky/context_buildings.hpp"
+#include "sky/site.hpp"
+
+namespace daylit::cli {
+
+nlohmann::json site_json(const Site& site, const std::string& path);
+nlohmann::json context_json(const ContextPlacement& context, const std::string& path);
+nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine);
+nlohmann::json counters_json(const VisibilityCounters& c);
+
+}  // namespace daylit::cli
