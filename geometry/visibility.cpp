@@ -232,7 +232,7 @@ struct VisibilityEngine::Impl {
   }
 
   template <class Signs>
-  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon,
+  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon, std::size_t excluded,
                std::vector<const ConvexPiece*>& out, VisibilityCounters& counters) const {
     if (nodes.empty()) return;
     // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
@@ -263,6 +263,7 @@ struct VisibilityEngine::Impl {
       }
       for (int i = node.first; i < node.first + node.count; ++i) {
         const ConvexPiece& o = occluders[order[i]];
+        if (o.source == excluded) continue;
         if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(occluder_boxes[order[i]], pl, p); })) {
           ++counters.occluders_box_culled;
           continue;
@@ -292,7 +293,7 @@ struct VisibilityEngine::Impl {
       return;
     }
     std::vector<const ConvexPiece*> blockers;
-    collect<Signs>(p, n, w, sh, options.clip_to_horizon, blockers, counters);
+    collect<Signs>(p, n, w, sh, options.clip_to_horizon, options.excluded_occluder, blockers, counters);
     const bool reference = mode == GeometryMode::rational;
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.

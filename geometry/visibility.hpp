@@ -51,6 +51,11 @@ struct VisibilityOptions {
   // Fill SphericalRegion::edge_sources: the 3-D line of every edge, for gradients (Arvo 1994).
   // Costs a small array per loop; the default leaves the fast path as it is.
   bool edge_sources = false;
+  // The index (in Scene::occluders) of an occluder that does not block: the luminaire itself when
+  // every surface of a model is both a luminaire and an occluder (radiosity, DESIGN.md §4), so
+  // that a surface does not hide itself. kNoOccluder: every occluder blocks.
+  static constexpr std::size_t kNoOccluder = std::size_t(-1);
+  std::size_t excluded_occluder = kNoOccluder;
 };
 
 class VisibilityEngine {

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "geometry/convex_pieces.hpp"
+#include "illumination/solid_angle.hpp"
 #include "reference_quadrature.hpp"
 #include "test_scenes.hpp"
 #include "simulation/sky_component.hpp"
@@ -301,4 +302,25 @@ TEST_CASE("a reveal that closes the view exactly leaves no loop at all; one that
     const double sc_sliver = sky_component_percent(sliver, decimal, {q, {0, 0, 1}}, SkyModel::cie_overcast, counters);
     CHECK(std::abs(sc_sliver) < 1e-17);
   }
+}
+
+TEST_CASE("a surface that is both luminaire and occluder hides itself unless excluded, and only itself") {
+  // Radiosity (DESIGN.md §4): every surface is a luminaire and an occluder. A unit square 1 above
+  // the receiver, facing it, and a second square out of its view: seen as the luminaire, the
+  // square hides itself unless it is the excluded occluder, and excluding another changes nothing.
+  Scene scene;
+  scene.occluders.push_back(polygon({{-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0.5, 0.5, 1}, {-0.5, 0.5, 1}}));
+  scene.occluders.push_back(polygon({{5, -2, 2}, {9, -2, 2}, {9, 2, 2}, {5, 2, 2}}));
+  scene.apertures.push_back({scene.occluders[0], 1.0});
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  VisibilityCounters counters;
+  VisibilityOptions options;
+  options.clip_to_horizon = false;
+  CHECK(engine.visible_region({0, 0, 0}, {0, 0, 1}, 0, counters, options).empty());
+  options.excluded_occluder = 0;
+  // A rectangle a × b centred d away: 4·asin(ab/√((a² + 4d²)(b² + 4d²))), here 4·asin(1/5).
+  const double omega = solid_angle(engine.visible_region({0, 0, 0}, {0, 0, 1}, 0, counters, options));
+  CHECK(omega == Approx(4 * std::asin(1.0 / 5)).epsilon(1e-14));
+  options.excluded_occluder = 1;
+  CHECK(engine.visible_region({0, 0, 0}, {0, 0, 1}, 0, counters, options).empty());
 }
