@@ -23,10 +23,15 @@ int main(int argc, char** argv) {
   auto run_eval = daylit::cli::add_eval_command(app);
   auto run_bench = daylit::cli::add_bench_command(app);
   auto run_sun = daylit::cli::add_sun_command(app);
+  // Exit codes, a contract for scripts (README, "Exit codes"): 0 success (and --help), 1 input
+  // that cannot be used (a file, a line, a value in it), 2 a command line that cannot be parsed
+  // (unknown or missing option, a value an option refuses), 3 an internal error.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    app.exit(e);                                      // prints "error: ..." and the usage hint
+    return 2;
   }
   try {
     if (app.got_subcommand("df")) return run_df();
@@ -38,8 +43,8 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return 2;
+    std::cerr << "error: internal: " << e.what() << '\n';
+    return 3;
   }
   return 0;
 }

@@ -1,5 +1,5 @@
-// `daylit sun --site LAT,LON[,ELEV] --time ISO8601 [--pressure-hpa P] [--temperature-c T]
-// [--delta-t-s S] [--delta-ut1-s S]`: prints
+// `daylit sun (--location LAT,LON[,ELEV] | --site site.json) --time ISO8601 [--pressure-hpa P]
+// [--temperature-c T] [--delta-t-s S] [--delta-ut1-s S]`: prints
 // {"zenith_deg":…,"azimuth_deg":…,"elevation_deg":…,"declination_deg":…,"equation_of_time_min":…,
 //  "delta_t_s":…}
 // with every double to full (round-trip) precision. Bad arguments are refused by CLI11 while
@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/error.hpp"
+#include "sky/site.hpp"
 #include "sky/solar_position.hpp"
 
 namespace daylit::cli {
@@ -26,7 +27,7 @@ namespace daylit::cli {
 namespace {
 
 struct SunOptions {
-  std::string site, time;
+  std::string location, site, time;
   double pressure_hpa = 1013.25;
   double temperature_c = 10;
   double delta_t_s = 0;
@@ -34,12 +35,12 @@ struct SunOptions {
   CLI::Option* delta_t_option = nullptr;
 };
 
-struct Site {
+struct Location {
   double latitude_deg, longitude_deg, elevation_m;
 };
 
 // "LAT,LON" or "LAT,LON,ELEV" (degrees, degrees east, metres); throws daylit::Error.
-Site parse_site(const std::string& text) {
+Location parse_location(const std::string& text) {
   std::vector<double> v;
   std::size_t start = 0;
   while (true) {
@@ -82,8 +83,17 @@ CLI::Validator validator_from(Parse parse, const std::string& description) {
       description);
 }
 
+// The observer: from --location, or from the site file that `df` and `illuminance` take (its origin,
+// with the height above the ellipsoid as the elevation: SPA uses it only for the parallax, where
+// the geoid's tens of metres move the sun by under 1e-5 degrees).
+Location observer(const SunOptions& opt) {
+  if (!opt.location.empty()) return parse_location(opt.location);
+  const GeographicPosition origin = read_site_file(opt.site).origin();
+  return {origin.latitude_deg, origin.longitude_deg, origin.height_m};
+}
+
 int run_sun(const SunOptions& opt) {
-  const Site site = parse_site(opt.site);
+  const Location site = observer(opt);
   SolarPositionInput in;
   in.time = parse_iso8601_time(opt.time);
   in.latitude_deg = site.latitude_deg;
@@ -117,11 +127,16 @@ std::function<int()> add_sun_command(CLI::App& app) {
       "(NREL/TP-560-34302): +-0.0003 degrees for the years -2000 to 6000 with the right Delta T and\n"
       "UT1 - UTC. Also printed: elevation, topocentric declination, the equation of time and the Delta T\n"
       "used.");
-  sun->add_option("--site", opt->site,
-                  "LAT,LON,ELEV: latitude (degrees, north positive), longitude (degrees, east positive), "
-                  "elevation (m; may be left out: 0), e.g. 39.742476,-105.1786,1830.14")
-      ->required()
-      ->check(validator_from(parse_site, "LAT,LON,ELEV"));
+  // Where the observer is: exactly one of the two (an option group requiring one of its options).
+  CLI::Option_group* observer = sun->add_option_group("observer", "Where the sun is seen from (one of):");
+  observer
+      ->add_option("--location", opt->location,
+                   "LAT,LON,ELEV: latitude (degrees, north positive), longitude (degrees, east positive), elevation "
+                   "(m; may be left out: 0), e.g. 39.742476,-105.1786,1830.14")
+      ->check(validator_from(parse_location, "LAT,LON,ELEV"));
+  observer->add_option("--site", opt->site, "Site file (JSON), as df and illuminance take it: the sun at its origin")
+      ->check(CLI::ExistingFile);
+  observer->require_option(1);
   sun->add_option("--time", opt->time,
                   "ISO 8601 instant with a UTC offset, e.g. 2003-10-17T12:30:30-07:00 (= 2003-10-17T19:30:30Z)")
       ->required()

@@ -28,7 +28,7 @@ city=(--scene "$samples/city/scene.rad" --apertures "$samples/city/apertures.rad
       --site "$samples/city/site.json" --context "$samples/city/buildings.geojson")
 "$daylit" illuminance "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
   --direct-normal 70000 --summary "$work/city.json" --out "$work/city.csv" --quiet || fail "illuminance on the city"
-sun=$("$daylit" sun --site 41.3925,2.164,95 --time 2026-06-21T17:00:00+02:00)
+sun=$("$daylit" sun --site "$samples/city/site.json" --time 2026-06-21T17:00:00+02:00)
 python3 - "$work/city.json" "$sun" <<'PY' || fail "city summary"
 import json, sys
 s = json.load(open(sys.argv[1])); sun = json.loads(sys.argv[2])

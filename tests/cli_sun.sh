@@ -9,7 +9,7 @@ trap 'rm -rf "$work"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-vector=(--site 39.742476,-105.1786,1830.14 --pressure-hpa 820 --temperature-c 11 --delta-t-s 67)
+vector=(--location 39.742476,-105.1786,1830.14 --pressure-hpa 820 --temperature-c 11 --delta-t-s 67)
 out=$("$daylit" sun "${vector[@]}" --time 2003-10-17T12:30:30-07:00) || fail "exit status $? for the test vector"
 echo "$out"
 [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "not one line"
@@ -32,30 +32,40 @@ same=$("$daylit" sun "${vector[@]}" --time 2003-10-17T19:30:30Z)
 [ "$same" = "$out" ] || fail "UTC gives $same"
 same=$("$daylit" sun "${vector[@]}" --time 2003-10-18T05:00:30+09:30)
 [ "$same" = "$out" ] || fail "+09:30 gives $same"
-"$daylit" sun --site=-33.87,151.21 --time 2021-12-21T12:00:00+11:00 > /dev/null || fail "southern site refused"
-"$daylit" sun --site -33.87,151.21,40 --time 2021-12-21T12:00:00+11:00 > /dev/null || fail "--site -33.87,... refused"
+"$daylit" sun --location=-33.87,151.21 --time 2021-12-21T12:00:00+11:00 > /dev/null || fail "southern site refused"
+"$daylit" sun --location -33.87,151.21,40 --time 2021-12-21T12:00:00+11:00 > /dev/null || fail "--location -33.87,... refused"
 
+# --site takes the site file that df and illuminance take (one meaning per option name): the sun
+# at its origin, the same answer as the coordinates give.
+cd "$work" || exit 1
+printf '{"latitude_deg": 39.742476, "longitude_deg": -105.1786, "elevation_m": 1830.14, "north_deg": 0}\n' > site.json
+from_file=$("$daylit" sun --site site.json --pressure-hpa 820 --temperature-c 11 --delta-t-s 67 --time 2003-10-17T12:30:30-07:00)
+[ "$from_file" = "$out" ] || fail "--site site.json gives $from_file"
+
+# Every refusal here is of the command line: exit status 2 (README, "Exit codes").
 expect_failure() {  # name, text stderr must contain, arguments...
   local name=$1 expected=$2
   shift 2
   "$daylit" sun "$@" > stdout.txt 2> stderr.txt
   local status=$?
   local before=$failures
-  [ "$status" -ne 0 ] || fail "$name: exit status 0"
+  [ "$status" -eq 2 ] || fail "$name: exit status $status, not 2"
   grep -q -- "$expected" stderr.txt || { fail "$name: stderr lacks '$expected':"; cat stderr.txt; }
   [ ! -s stdout.txt ] || fail "$name: printed $(cat stdout.txt)"
   [ "$failures" -ne "$before" ] || echo "ok   $name: $(head -n 1 stderr.txt)"
 }
-cd "$work" || exit 1
 t=2003-10-17T12:30:30-07:00
-expect_failure "latitude above 90" "--site.*latitude 95" --site 95,0,0 --time $t
-expect_failure "longitude beyond 180" "--site.*longitude 200" --site 40,200 --time $t
-expect_failure "site not numbers" "--site.*\"abc\" is not a number" --site 40,abc,0 --time $t
-expect_failure "site with four numbers" "--site.*4 numbers" --site 1,2,3,4 --time $t
-expect_failure "time without an offset" "--time.*UTC offset" --site 40,0 --time 2003-10-17T12:30:30
-expect_failure "time that does not exist" "--time.*day 29 does not exist" --site 40,0 --time 2003-02-29T12:00Z
-expect_failure "negative pressure" "--pressure-hpa" --site 40,0 --time $t --pressure-hpa -1
-expect_failure "UT1 - UTC of 2 s" "--delta-ut1-s" --site 40,0 --time $t --delta-ut1-s 2
-expect_failure "no time" "--time" --site 40,0
+expect_failure "latitude above 90" "--location.*latitude 95" --location 95,0,0 --time $t
+expect_failure "longitude beyond 180" "--location.*longitude 200" --location 40,200 --time $t
+expect_failure "site not numbers" "--location.*\"abc\" is not a number" --location 40,abc,0 --time $t
+expect_failure "site with four numbers" "--location.*4 numbers" --location 1,2,3,4 --time $t
+expect_failure "time without an offset" "--time.*UTC offset" --location 40,0 --time 2003-10-17T12:30:30
+expect_failure "time that does not exist" "--time.*day 29 does not exist" --location 40,0 --time 2003-02-29T12:00Z
+expect_failure "negative pressure" "--pressure-hpa" --location 40,0 --time $t --pressure-hpa -1
+expect_failure "UT1 - UTC of 2 s" "--delta-ut1-s" --location 40,0 --time $t --delta-ut1-s 2
+expect_failure "no time" "--time" --location 40,0
+expect_failure "no observer" "--location" --time $t
+expect_failure "both --location and --site" "Exactly 1 option from \[--location,--site\]" --location 40,0 --site site.json --time $t
+expect_failure "a site file that does not exist" "--site.*missing.json" --site missing.json --time $t
 echo "$failures failures"
 [ "$failures" -eq 0 ]
