@@ -21,7 +21,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <random>
 
 #include <fmt/format.h>
 
@@ -33,6 +32,7 @@
 #include "illumination/polynomial_luminaire.hpp"
 #include "illumination/rational_moments.hpp"
 #include "illumination/spherical_quadrature.hpp"
+#include "illumination/xoshiro256.hpp"
 
 namespace daylit::cli {
 
@@ -72,10 +72,13 @@ struct SpecialRow {
 std::vector<SpecialRow> special_functions(bool quick) {
   const int N = quick ? 2000 : 20000;
   const double budget = quick ? 0.01 : 0.2;
-  std::mt19937_64 rng(20000619);
-  std::uniform_real_distribution<double> angle(-2 * M_PI, 2 * M_PI), alpha_d(0.01, 0.999), beta_d(-1.5707, 1.5707);
+  Xoshiro256 rng(20000619);  // the same arguments on every platform (std distributions differ)
   std::vector<double> xs(N), alphas(N), betas(N);
-  for (int i = 0; i < N; ++i) xs[i] = angle(rng), alphas[i] = alpha_d(rng), betas[i] = beta_d(rng);
+  for (int i = 0; i < N; ++i) {
+    xs[i] = rng.uniform(-2 * M_PI, 2 * M_PI);
+    alphas[i] = rng.uniform(0.01, 0.999);
+    betas[i] = rng.uniform(-1.5707, 1.5707);
+  }
   std::vector<SpecialRow> rows;
 
   // Cl2: absolute error against the __float128 series.

@@ -32,7 +32,6 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
-#include <random>
 
 #include <fmt/format.h>
 
@@ -43,6 +42,7 @@
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 #include "bench/sky_baselines.hpp"
+#include "illumination/xoshiro256.hpp"
 #include "simulation/sky_component.hpp"
 
 namespace daylit::cli {
@@ -324,11 +324,13 @@ double mean(const std::vector<double>& v) {
 
 // Sensors uniformly at random (seeded) on the office's work plane, 2 cm from the walls.
 SensorGrid random_office_grid(std::size_t count) {
-  std::mt19937_64 rng(20240501 + count);
-  std::uniform_real_distribution<double> x(0.02, 3.98), y(0.02, 5.98);
+  Xoshiro256 rng(20240501 + count);  // the same sensors on every platform (std distributions differ)
   SensorGrid g{fmt::format("random{}", count), "", {}};
   g.sensors.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) g.sensors.push_back({{x(rng), y(rng), 0.85}, {0, 0, 1}});
+  for (std::size_t i = 0; i < count; ++i) {
+    const double x = rng.uniform(0.02, 3.98), y = rng.uniform(0.02, 5.98);
+    g.sensors.push_back({{x, y, 0.85}, {0, 0, 1}});
+  }
   return g;
 }
 
@@ -352,10 +354,10 @@ std::vector<Polygon> box(const Vec3& lo, const Vec3& hi, const std::string& name
 // window wall and the building across it (y from −17.5 to −1.5 m).
 Scene office_with_boxes(const Scene& office, int k) {
   Scene s = office;
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> cx(-8, 12), cy(-15.5, -3.5), half(0.5, 2), height(2, 12);
+  Xoshiro256 rng(7);
   for (int i = 0; i < k; ++i) {
-    const double x = cx(rng), y = cy(rng), hx = half(rng), hy = half(rng), h = height(rng);
+    const double x = rng.uniform(-8, 12), y = rng.uniform(-15.5, -3.5), hx = rng.uniform(0.5, 2), hy = rng.uniform(0.5, 2),
+                 h = rng.uniform(2, 12);
     for (auto& f : box({x - hx, y - hy, 0}, {x + hx, y + hy, h}, fmt::format("box {}", i))) s.occluders.push_back(std::move(f));
   }
   return s;

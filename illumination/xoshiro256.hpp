@@ -31,6 +31,21 @@ class Xoshiro256 {
   }
   // Uniform in [0, 1), 53 random bits.
   double uniform() noexcept { return double((*this)() >> 11) * 0x1p-53; }
+  // Uniform in [lo, hi) (lo < hi): the same numbers on every platform, unlike
+  // std::uniform_real_distribution, whose algorithm each standard library chooses.
+  double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
+  // Uniform integer in [lo, hi] (lo ≤ hi), without modulo bias: Lemire's multiply-and-reject
+  // ("Fast random integer generation in an interval", ACM TOMACS 2019), for the same reason.
+  std::int64_t uniform_int(std::int64_t lo, std::int64_t hi) noexcept {
+    const std::uint64_t range = std::uint64_t(hi) - std::uint64_t(lo) + 1;
+    if (range == 0) return std::int64_t((*this)());  // the whole 64-bit range
+    unsigned __int128 m = (unsigned __int128)(*this)() * range;
+    if (std::uint64_t(m) < range) {
+      const std::uint64_t threshold = (0 - range) % range;
+      while (std::uint64_t(m) < threshold) m = (unsigned __int128)(*this)() * range;
+    }
+    return lo + std::int64_t(m >> 64);
+  }
 
  private:
   static std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <numbers>
 #include <cstdio>
-#include <random>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -23,6 +22,7 @@
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "illumination/solid_angle.hpp"
+#include "illumination/xoshiro256.hpp"
 #include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
 
@@ -64,9 +64,9 @@ bool printable_ascii(const std::string& s) {
   return true;
 }
 
-std::string random_bytes(std::mt19937& rng, std::size_t size) {
+std::string random_bytes(Xoshiro256& rng, std::size_t size) {
   std::string s(size, '\0');
-  for (char& c : s) c = char(std::uniform_int_distribution<int>(0, 255)(rng));
+  for (char& c : s) c = char(rng.uniform_int(0, 255));
   return s;
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("eval: every truncation of a query is an answer, an error naming the l
 // Binary garbage (random bytes, NUL included): an error naming file and line, in printable text.
 
 TEST_CASE("binary garbage is an error naming file and line, and the message stays printable") {
-  std::mt19937 rng(20261122);
+  Xoshiro256 rng(20261122);
   for (int trial = 0; trial < 200; ++trial) {
     const std::string bytes = random_bytes(rng, 16 + trial * 20);
     INFO("trial " << trial);

@@ -5,10 +5,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <random>
+#include <numbers>
 
 #include "illumination/moments.hpp"
 #include "illumination/monte_carlo.hpp"
+#include "illumination/xoshiro256.hpp"
 
 using namespace daylit;
 
@@ -64,9 +65,12 @@ bool ray_hits(const PlanarPolygon& poly, const Vec3& origin, const Vec3& u) {
   return inside_2d(poly.outer, p) && !(poly.hole.size() >= 3 && inside_2d(poly.hole, p));
 }
 
-Vec3 random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> g;
-  return normalized(Vec3{g(rng), g(rng), g(rng)});
+// Uniform on the sphere (Archimedes: z uniform in [−1, 1]), from Xoshiro256, so that the
+// directions are the same on every platform (std::normal_distribution's are not).
+Vec3 random_direction(Xoshiro256& rng) {
+  const double z = rng.uniform(-1, 1), phi = rng.uniform(0, 2 * std::numbers::pi);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 // An L-shaped (non-convex) window in the vertical plane y = 3, seen from a desk point.
@@ -117,7 +121,7 @@ std::vector<Case> cases() {
 }  // namespace
 
 TEST_CASE("winding number agrees with a planar point-in-polygon test on every direction") {
-  std::mt19937_64 rng(7);
+  Xoshiro256 rng(7);
   struct Setup {
     PlanarPolygon poly;
     Vec3 origin;
