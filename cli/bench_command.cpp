@@ -3,6 +3,8 @@
 
 #include "cli/bench_command.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <memory>
 #include <vector>
 

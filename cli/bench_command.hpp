@@ -5,9 +5,11 @@
 // exact and float geometry, Monte Carlo, cubature; scaling) and `stiff` (stiff scenes against
 // independent references); see bench_suites.hpp.
 
-#include <CLI/CLI.hpp>
-
 #include <functional>
+
+namespace CLI {
+class App;  // CLI11 (<CLI/CLI.hpp>) is included only where options are declared and parsed
+}  // namespace CLI
 
 namespace daylit::cli {
 

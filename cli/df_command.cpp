@@ -1,5 +1,7 @@
 #include "cli/df_command.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 

@@ -1,7 +1,11 @@
 #pragma once
 // `daylit df`: daylight factors on sensor grids of building models.
 
-#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace CLI {
+class App;  // CLI11 (<CLI/CLI.hpp>) is included only where options are declared and parsed
+}  // namespace CLI
 
 namespace daylit::cli {
 

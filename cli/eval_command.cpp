@@ -3,6 +3,8 @@
 
 #include "cli/eval_command.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <fstream>
 #include <iostream>
 #include <memory>

@@ -1,10 +1,12 @@
 #pragma once
 // `daylit eval`: exact point evaluations of the kernels, JSON Lines in and out.
 
-#include <CLI/CLI.hpp>
-
 #include <functional>
 #include <string>
+
+namespace CLI {
+class App;  // CLI11 (<CLI/CLI.hpp>) is included only where options are declared and parsed
+}  // namespace CLI
 
 namespace daylit::cli {
 

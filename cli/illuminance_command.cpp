@@ -5,6 +5,8 @@
 
 #include "cli/illuminance_command.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 

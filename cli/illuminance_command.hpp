@@ -2,7 +2,11 @@
 // `daylit illuminance`: illuminance (lux) on sensor grids under a CIE sky and the sun at a given
 // site and time.
 
-#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace CLI {
+class App;  // CLI11 (<CLI/CLI.hpp>) is included only where options are declared and parsed
+}  // namespace CLI
 
 namespace daylit::cli {
 

@@ -7,6 +7,8 @@
 
 #include "cli/sun_command.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <charconv>
 #include <cmath>
 #include <iostream>

@@ -2,9 +2,11 @@
 // `daylit sun`: the sun's topocentric zenith and azimuth at a site and an instant (NREL's SPA,
 // sky/solar_position.hpp), as one line of JSON.
 
-#include <CLI/CLI.hpp>
-
 #include <functional>
+
+namespace CLI {
+class App;  // CLI11 (<CLI/CLI.hpp>) is included only where options are declared and parsed
+}  // namespace CLI
 
 namespace daylit::cli {
 
