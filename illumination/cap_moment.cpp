@@ -1,8 +1,8 @@
 #include "illumination/cap_moment.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -358,11 +358,16 @@ bool positively_parallel(const Vec3& a, const Vec3& b) {
   return dot(ua, ub) > 0 && norm(cross(ua, ub)) <= 1e-12;
 }
 
+// "[x, y, z]" to 17 significant digits, for messages (std::to_chars: no streams in a kernel).
 std::string vector_text(const Vec3& v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << '[' << v.x << ", " << v.y << ", " << v.z << ']';
-  return out.str();
+  std::string out = "[";
+  for (const double c : {v.x, v.y, v.z}) {
+    char buf[32];
+    const auto end = std::to_chars(buf, buf + sizeof buf, c, std::chars_format::general, 17).ptr;
+    out.append(buf, end).append(", ");
+  }
+  out.resize(out.size() - 2);
+  return out + "]";
 }
 
 // 1 − cos^m σ without cancellation: −expm1(m ln cos σ) with ln cos σ = log1p(−2 sin²(σ/2)) for
