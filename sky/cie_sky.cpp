@@ -14,7 +14,7 @@
 #include "illumination/hemisphere_clip.hpp"
 #include "illumination/least_squares.hpp"
 #include "illumination/moments.hpp"
-#include "illumination/spherical_quadrature.hpp"
+#include "sky/sky_quadrature.hpp"
 
 namespace daylit {
 
@@ -170,32 +170,8 @@ SphericalRegion sky_hemisphere() {
 
 CieQuadrature cie_sky_irradiance_quadrature(const CieSky& sky, const SphericalRegion& region, const Vec3& n,
                                             double tolerance, const std::function<double(const Vec3&)>& transmittance) {
-  // Fan triangles, each split at the sun when it holds it, so that the indicatrix's kink sits on
-  // a vertex, where the cubature's refinement converges fastest.
-  SphericalRegion triangles;
-  for (const DirectionLoop& loop : region.loops)
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      const Vec3 a = loop[0], b = loop[i], c = loop[i + 1];
-      const double orientation = dot(a, cross(b, c));
-      const Vec3& s = sky.sun;
-      const bool holds_sun = orientation != 0 && dot(s, cross(a, b)) * orientation > 0 &&
-                             dot(s, cross(b, c)) * orientation > 0 && dot(s, cross(c, a)) * orientation > 0;
-      if (holds_sun) {
-        const Vec3 sun_point = (dot(a, a) > 0 ? norm(a) : 1.0) * s;
-        triangles.loops.push_back({sun_point, b, c});
-        triangles.loops.push_back({a, sun_point, c});
-        triangles.loops.push_back({a, b, sun_point});
-      } else {
-        triangles.loops.push_back({a, b, c});
-      }
-    }
-  const QuadratureResult q = integrate_over_region(
-      triangles,
-      [&](const Vec3& u) {
-        const double l = sky.relative_luminance(u) * std::max(0.0, dot(n, u));
-        return transmittance ? l * transmittance(u) : l;
-      },
-      tolerance);
+  const QuadratureResult q = sky_irradiance_quadrature([&](const Vec3& u) { return sky.relative_luminance(u); },
+                                                       sky.sun, region, n, tolerance, transmittance);
   return {q.value, q.error_estimate, q.evaluations};
 }
 
