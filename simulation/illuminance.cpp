@@ -28,6 +28,22 @@ Vec3 pane_normal(const Aperture& aperture) { return normalized(newell_normal(ape
 void add_sky(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n,
              SensorIlluminance& out) {
   const bool glazed = !aperture.angular_transmittance.empty();
+  if (c.sky == DaylightConditions::Sky::perez) {
+    // The Perez sky: adaptive cubature of its relative luminance (L/L_z), through glass with T(μ).
+    std::function<double(const Vec3&)> transmittance;
+    if (glazed) {
+      const Vec3 a = pane_normal(aperture);
+      transmittance = [&aperture, a](const Vec3& u) {
+        return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
+      };
+    }
+    const QuadratureResult q = perez_sky_irradiance_quadrature(*c.perez, region, n, c.quadrature_tolerance, transmittance);
+    const double scale = glazed ? 1.0 : aperture.transmittance;
+    out.sky += scale * q.value;
+    out.sky_error += scale * q.error_estimate;
+    out.evaluations += q.evaluations;
+    return;
+  }
   if (c.sky != DaylightConditions::Sky::cie_general) {
     const SkyModel model = c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast;
     out.sky += glazed ? sky_irradiance_through_glazing(region, n, model, pane_normal(aperture),
@@ -97,6 +113,9 @@ double unobstructed_sky_irradiance(const DaylightConditions& c) {
     case DaylightConditions::Sky::uniform: return unobstructed_horizontal_irradiance(SkyModel::uniform);
     case DaylightConditions::Sky::cie_overcast: return unobstructed_horizontal_irradiance(SkyModel::cie_overcast);
     case DaylightConditions::Sky::cie_general: break;
+    case DaylightConditions::Sky::perez:
+      if (!c.perez) throw Error("a Perez sky needs its hour's sky");
+      return c.perez->horizontal_irradiance_over_zenith();
   }
   return cie_sky_irradiance_quadrature(*c.cie, sky_hemisphere(), {0, 0, 1}, 1e-12).value;
 }
@@ -106,6 +125,7 @@ IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene
   if (conditions.sky == DaylightConditions::Sky::cie_general &&
       (!conditions.cie || (conditions.method == DaylightConditions::Method::fit && !conditions.fit)))
     throw Error("a CIE general sky needs its type and sun (and its fit for the fit method)");
+  if (conditions.sky == DaylightConditions::Sky::perez && !conditions.perez) throw Error("a Perez sky needs its hour's sky");
   IlluminanceResult result;
   const std::size_t count = grid.sensors.size();
   result.sky_lux.assign(count, 0.0);

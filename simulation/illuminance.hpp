@@ -13,6 +13,7 @@
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "sky/cie_sky.hpp"
+#include "sky/perez_sky.hpp"
 #include "simulation/sky_component.hpp"
 #include "sky/sky_model.hpp"
 
@@ -24,11 +25,12 @@ inline constexpr double kSunHalfAngleDeg = 0.2665;
 
 // The sky's luminance distribution and scale, and the sun.
 struct DaylightConditions {
-  enum class Sky { uniform, cie_overcast, cie_general };
+  enum class Sky { uniform, cie_overcast, cie_general, perez };
   enum class Method { fit, quadrature };  // for cie_general skies
   Sky sky = Sky::cie_overcast;
   std::optional<CieSky> cie;      // cie_general: the type and the sun it is drawn for
   std::optional<CieSkyFit> fit;   // cie_general with Method::fit
+  std::optional<PerezSky> perez;  // perez: the hour's sky (always by cubature, at quadrature_tolerance)
   Method method = Method::quadrature;
   double quadrature_tolerance = 1e-9;  // relative, per region (spherical_quadrature.hpp)
   double zenith_luminance = 0;         // L_z, cd/m² (the uniform sky's luminance)
@@ -43,7 +45,8 @@ struct DaylightConditions {
 
 // E_out / L_z: the unobstructed horizontal illuminance of the sky per unit zenith luminance. The
 // overcast and uniform skies in closed form (7π/9, π); a CIE general sky by adaptive cubature of
-// its luminance over the hemisphere to 1e-12 (computed, not looked up).
+// its luminance over the hemisphere to 1e-12 (computed, not looked up); the Perez sky's own
+// normalisation (the same cubature, done once when the PerezSky is built).
 double unobstructed_sky_irradiance(const DaylightConditions& conditions);
 
 struct IlluminanceResult {
