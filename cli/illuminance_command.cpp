@@ -28,7 +28,10 @@
 #include "geometry/error.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "simulation/illuminance.hpp"
+#include "sky/hour_sun.hpp"
+#include "sky/perez_sky.hpp"
 #include "sky/solar_position.hpp"
+#include "sky/weather_file.hpp"
 
 namespace daylit::cli {
 
@@ -48,12 +51,17 @@ struct IlluminanceOptions {
   std::string out, summary, image;
   int threads = 0;
   bool quiet = false;
+  // The Perez sky (--sky perez): the hour from --weather and --time, or given.
+  std::string weather, perez_clamps = "none";
+  double diffuse_irradiance = 0, direct_irradiance = 0, dew_point_c = 11;
   CLI::Option *zenith_luminance_option = nullptr, *diffuse_horizontal_option = nullptr, *sun_zenith_option = nullptr;
+  CLI::Option *direct_normal_option = nullptr, *diffuse_irradiance_option = nullptr, *direct_irradiance_option = nullptr,
+              *dew_point_option = nullptr;
 };
 
 // "uniform", "cie-overcast" or "cie-1" … "cie-15"; 0 for the first two, else the CIE type.
 int cie_type(const std::string& sky) {
-  if (sky == "uniform" || sky == "cie-overcast") return 0;
+  if (sky == "uniform" || sky == "cie-overcast" || sky == "perez") return 0;
   if (sky.rfind("cie-", 0) == 0) {
     const std::string n = sky.substr(4);
     if (!n.empty() && n.size() <= 2 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; })) {
@@ -61,13 +69,14 @@ int cie_type(const std::string& sky) {
       if (type >= 1 && type <= 15) return type;
     }
   }
-  throw Error("unknown sky '" + sky + "': use uniform, cie-overcast, or cie-1 … cie-15 (ISO 15469 types)");
+  throw Error("unknown sky '" + sky + "': use uniform, cie-overcast, cie-1 … cie-15 (ISO 15469 types) or perez");
 }
 
 struct SunPosition {
   std::string source;  // "spa", "given" or "none"
   double zenith_deg = 0, azimuth_deg = 0;
   Vec3 direction{0, 0, 1};  // model frame
+  double distance_au = 1;   // Earth–sun distance (SPA's R; 1 when the position is given)
 };
 
 // The sun from --time and the site (SPA), or as given, turned into the model frame by the site's
@@ -87,6 +96,7 @@ SunPosition sun_position(const IlluminanceOptions& opt, const std::optional<Site
     sun.source = "spa";
     sun.zenith_deg = p.zenith_deg;
     sun.azimuth_deg = p.azimuth_deg;
+    sun.distance_au = p.distance_au;
   } else if (opt.sun_zenith_option->count() > 0) {
     sun.source = "given";
     sun.zenith_deg = opt.sun_zenith_deg;
@@ -108,13 +118,14 @@ SunPosition sun_position(const IlluminanceOptions& opt, const std::optional<Site
 // can hide. Overcast: the zenith (1); uniform: 1; CIE general: the larger of the sun's direction
 // (the circumsolar peak) and 40,000 directions spread over the hemisphere.
 double max_relative_luminance(const DaylightConditions& c) {
-  if (c.sky != DaylightConditions::Sky::cie_general) return 1;
-  double m = c.cie->relative_luminance(c.sun);
+  if (c.sky != DaylightConditions::Sky::cie_general && c.sky != DaylightConditions::Sky::perez) return 1;
+  auto relative = [&](const Vec3& u) { return c.perez ? c.perez->relative_luminance(u) : c.cie->relative_luminance(u); };
+  double m = relative(c.perez ? c.perez->sun() : c.sun);
   constexpr int kCount = 40000;
   const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
   for (int i = 0; i < kCount; ++i) {
     const double z = 1 - (i + 0.5) / kCount, r = std::sqrt(1 - z * z);
-    m = std::max(m, c.cie->relative_luminance({r * std::cos(golden * i), r * std::sin(golden * i), z}));
+    m = std::max(m, relative({r * std::cos(golden * i), r * std::sin(golden * i), z}));
   }
   return m;
 }
@@ -148,13 +159,139 @@ void write_lux_csv(const std::string& path, const std::vector<GridLux>& grids) {
   if (std::fclose(out) != 0 || failed) throw Error(path + ": cannot write CSV");
 }
 
+// ---- The Perez sky of one hour (--sky perez) ------------------------------------------------
+// From a weather file's record (--weather with --time: the hour that holds the time, its sun by
+// the hour-ending convention, the site from the file unless --site is given) or from irradiances
+// given on the command line with the sun of --time/--site or --sun-zenith/--sun-azimuth.
+struct PerezSetup {
+  std::optional<PerezHour> hour;
+  SunPosition sun;
+  nlohmann::json weather;           // what was read and which hour was used
+  std::string site_source = "none";  // "--site", "weather file" or "none"
+};
+
+PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site) {
+  PerezSetup p;
+  PerezHourInput in;
+  in.clamps = parse_perez_clamps(opt.perez_clamps);
+  if (opt.zenith_luminance_option->count() > 0)
+    throw Error("--zenith-luminance does not apply to the Perez sky: its scale is the hour's diffuse horizontal illuminance");
+  if (!opt.weather.empty()) {
+    for (const CLI::Option* o : {opt.diffuse_horizontal_option, opt.direct_normal_option, opt.diffuse_irradiance_option,
+                                 opt.direct_irradiance_option, opt.dew_point_option, opt.sun_zenith_option})
+      if (o->count() > 0) throw Error(o->get_name() + " cannot be given with --weather: the weather file gives the hour");
+    if (opt.time.empty()) throw Error("--weather needs --time to pick the hour");
+    const WeatherFile file = read_weather_file(opt.weather);
+    p.site_source = site ? "--site" : "weather file";
+    if (!site) site = Site::geographic(file.location.latitude_deg, file.location.longitude_deg, file.location.elevation_m, 0);
+    const WeatherHour w = weather_hour(file, parse_iso8601_time(opt.time), site->origin().latitude_deg,
+                                       site->origin().longitude_deg, site->origin().height_m, opt.pressure_hpa,
+                                       opt.temperature_c);
+    const WeatherRecord& r = *w.record;
+    if (!w.sun.up)
+      throw Error(fmt::format("{}:{}: the sun is below the horizon for the whole hour {}:00–{}:00 local standard time; the "
+                              "Perez sky needs it up",
+                              file.path, r.line, w.hour_ending - 1, w.hour_ending));
+    p.sun.source = "spa";
+    p.sun.zenith_deg = w.sun.position.zenith_deg;
+    p.sun.azimuth_deg = w.sun.position.azimuth_deg;
+    p.sun.distance_au = w.sun.position.distance_au;
+    if (file.photometric) {
+      in.direct_normal_illuminance = r.direct_normal_illuminance;
+      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+    } else {
+      in.direct_normal_irradiance = r.direct_normal_irradiance;
+      in.diffuse_horizontal_irradiance = r.diffuse_horizontal_irradiance;
+      in.direct_normal_illuminance = r.direct_normal_illuminance;
+      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+    }
+    in.dew_point_c = r.dew_point_c;
+    const auto& i = w.sun.instant;
+    p.weather = {{"path", file.path},
+                 {"format", weather_format_name(file.format)},
+                 {"place", file.location.place},
+                 {"time_zone_h", file.location.time_zone_h},
+                 {"records", file.records.size()},
+                 {"record", {{"line", r.line}, {"month", r.month}, {"day", r.day}, {"hour", r.hour}}},
+                 {"hour", fmt::format("{:02}-{:02} {:02}:00–{:02}:00 local standard time (UTC{:+g})", r.month, r.day,
+                                      w.hour_ending - 1, w.hour_ending, file.location.time_zone_h)},
+                 {"sun_taken_at", fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:06.3f} (UTC{:+g})", i.year, i.month, i.day,
+                                              i.hour, i.minute, i.second, file.location.time_zone_h)},
+                 {"sun_up_fraction_of_hour", w.sun.up_fraction},
+                 {"convention", file.format == WeatherFormat::epw
+                                    ? "EPW hour h covers (h-1, h] local standard time; the sun at its middle, or at the "
+                                      "middle of the part of it the sun is up (sunrise and sunset hours)"
+                                    : ".wea: the sun at the time written"},
+                 {"missing_values",
+                  {{"policy", fmt::format("records lacking direct normal or diffuse horizontal values are skipped and "
+                                          "counted; more than {:g} % is refused; missing illuminances come from Perez's "
+                                          "efficacies, a missing dew point is 11 C",
+                                          100 * kMaxMissingShare)},
+                   {"unusable_records", file.unusable_records},
+                   {"missing_dew_points", file.missing_dew_points},
+                   {"missing_illuminances", file.missing_illuminances}}}};
+  } else {
+    p.sun = sun_position(opt, site);
+    p.site_source = site ? "--site" : "none";
+    if (p.sun.source == "none")
+      throw Error("sky perez needs the sun's position: --weather with --time, --time with --site, or --sun-zenith and "
+                  "--sun-azimuth");
+    if (opt.diffuse_irradiance_option->count() == 0 || opt.direct_irradiance_option->count() == 0)
+      throw Error("sky perez needs the hour's --diffuse-horizontal-irradiance and --direct-normal-irradiance (W/m2), or "
+                  "--weather with --time");
+    in.diffuse_horizontal_irradiance = opt.diffuse_irradiance;
+    in.direct_normal_irradiance = opt.direct_irradiance;
+    if (opt.diffuse_horizontal_option->count() > 0) in.diffuse_horizontal_illuminance = opt.diffuse_horizontal;
+    if (opt.direct_normal_option->count() > 0) in.direct_normal_illuminance = opt.direct_normal;
+    if (opt.dew_point_option->count() > 0) in.dew_point_c = opt.dew_point_c;
+  }
+  if (!(p.sun.zenith_deg < 90))
+    throw Error(fmt::format("the sun is {:.3f}° below the horizon; the Perez sky needs it above", p.sun.zenith_deg - 90));
+  // sun_position() turned a given or SPA sun into the model frame; the weather's sun is turned here.
+  if (!opt.weather.empty()) p.sun.direction = site->model_direction(p.sun.azimuth_deg, 90 - p.sun.zenith_deg);
+  in.sun_zenith_deg = p.sun.zenith_deg;
+  in.sun = p.sun.direction;
+  in.distance_au = p.sun.distance_au;
+  p.hour.emplace(perez_hour(in));
+  return p;
+}
+
+nlohmann::json perez_json(const PerezHour& h, const PerezSetup& setup) {
+  const PerezCondition& c = h.sky.condition();
+  nlohmann::json j = {
+      {"reference", "Perez, Seals and Michalsky 1993 (Solar Energy 50(3) 235-245); efficacies Perez et al. 1990"},
+      {"clamps", perez_clamps_name(h.sky.clamps())},
+      {"clamps_applied", c.clamps_applied},
+      {"clearness_epsilon", c.clearness},
+      {"brightness_delta", c.brightness},
+      {"bin", c.bin},
+      {"air_mass_kasten_young", c.air_mass},
+      {"coefficients", {{"a", c.a}, {"b", c.b}, {"c", c.c}, {"d", c.d}, {"e", c.e}}},
+      {"diffuse_horizontal_irradiance_w_m2", h.diffuse_horizontal_irradiance},
+      {"direct_normal_irradiance_w_m2", h.direct_normal_irradiance},
+      {"diffuse_horizontal_lux", h.diffuse_horizontal_lux},
+      {"diffuse_horizontal_lux_source", h.diffuse_lux_from_efficacy ? "Perez 1990 diffuse efficacy" : "given"},
+      {"direct_normal_lux", h.direct_normal_lux},
+      {"direct_normal_lux_source", h.direct_lux_from_efficacy ? "Perez 1990 direct efficacy" : "given"},
+      {"dew_point", h.dew_point_assumed ? "not given: 11 C assumed" : "given"},
+      {"normalisation_sr", h.sky.horizontal_integral()},
+      {"normalisation_method", "adaptive cubature over the hemisphere to 1e-12"},
+      {"radiance_145_point_sum_over_normalisation", h.sky.radiance_145_point_integral() / h.sky.horizontal_integral()},
+      {"site_source", setup.site_source}};
+  if (h.iterations > 0) j["irradiance_from_illuminance_iterations"] = h.iterations;
+  return j;
+}
+// ---- end of the Perez sky ------------------------------------------------------------------
+
 int run_illuminance(IlluminanceOptions opt) {
   const auto t0 = std::chrono::steady_clock::now();
   const int type = cie_type(opt.sky);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
                                                          : GeometryMode::exact;
-  if (opt.zenith_luminance_option->count() == 0 && opt.diffuse_horizontal_option->count() == 0)
+  const bool perez = opt.sky == "perez";
+  if (!opt.weather.empty() && !perez) throw Error("--weather is read by --sky perez only");
+  if (!perez && opt.zenith_luminance_option->count() == 0 && opt.diffuse_horizontal_option->count() == 0)
     throw Error("give the sky's scale: --diffuse-horizontal LUX (its unobstructed horizontal illuminance) or "
                 "--zenith-luminance CD_M2");
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
@@ -163,14 +300,18 @@ int run_illuminance(IlluminanceOptions opt) {
   // The site is read before the model so that the sun can decide the context rule (below).
   std::optional<Site> site;
   if (!opt.files.site.empty()) site = read_site_file(opt.files.site);
-  const SunPosition sun = sun_position(opt, site);
+  std::optional<PerezSetup> perez_hour_setup;
+  if (perez) perez_hour_setup = perez_setup(opt, site);
+  const SunPosition sun = perez ? perez_hour_setup->sun : sun_position(opt, site);
 
   DaylightConditions c;
   c.sky = type > 0 ? DaylightConditions::Sky::cie_general
           : opt.sky == "uniform" ? DaylightConditions::Sky::uniform
+          : perez                ? DaylightConditions::Sky::perez
                                  : DaylightConditions::Sky::cie_overcast;
   c.sun = sun.direction;
-  c.direct_normal = opt.direct_normal;
+  c.direct_normal = perez ? perez_hour_setup->hour->direct_normal_lux : opt.direct_normal;
+  if (perez) c.perez.emplace(perez_hour_setup->hour->sky);
   c.method = opt.method == "quadrature" ? DaylightConditions::Method::quadrature : DaylightConditions::Method::fit;
   c.quadrature_tolerance = opt.tolerance;
   if (opt.direct_normal > 0 && sun.source == "none")
@@ -186,7 +327,9 @@ int run_illuminance(IlluminanceOptions opt) {
     if (c.method == DaylightConditions::Method::fit) c.fit = fit_cie_sky(*c.cie);
   }
   const double e_out_over_lz = unobstructed_sky_irradiance(c);
-  c.zenith_luminance = opt.zenith_luminance_option->count() > 0 ? opt.zenith_luminance : opt.diffuse_horizontal / e_out_over_lz;
+  c.zenith_luminance = perez ? perez_hour_setup->hour->diffuse_horizontal_lux / e_out_over_lz
+                       : opt.zenith_luminance_option->count() > 0 ? opt.zenith_luminance
+                                                                  : opt.diffuse_horizontal / e_out_over_lz;
 
   // Context buildings below the angular threshold may hide part of the sun's disk (0.53° across):
   // with the sun on, those in its beam are kept, so the sun's illuminance loses nothing.
@@ -232,6 +375,12 @@ int run_illuminance(IlluminanceOptions opt) {
                         {"zenith_luminance_cd_m2", c.zenith_luminance},
                         {"unobstructed_horizontal_lux", c.zenith_luminance * e_out_over_lz},
                         {"e_out_over_zenith_luminance", e_out_over_lz}};
+  if (perez) {
+    sky["perez"] = perez_json(*perez_hour_setup->hour, *perez_hour_setup);
+    sky["method"] = "quadrature";
+    sky["quadrature_tolerance"] = opt.tolerance;
+    if (!opt.weather.empty()) summary["weather"] = perez_hour_setup->weather;
+  }
   if (type > 0) {
     sky["method"] = opt.method;
     if (c.fit) {
@@ -263,11 +412,11 @@ int run_illuminance(IlluminanceOptions opt) {
     sun_json["direction_model"] = {sun.direction.x, sun.direction.y, sun.direction.z};
     if (!opt.time.empty()) sun_json["time"] = opt.time;
   }
-  sun_json["direct_normal_lux"] = opt.direct_normal;
+  sun_json["direct_normal_lux"] = c.direct_normal;
   sun_json["half_angle_deg"] = kSunHalfAngleDeg;
   sun_json["included"] = c.has_sun();
   if (!c.has_sun())
-    sun_json["left_out"] = opt.direct_normal > 0 ? "the sun is below the horizon" : "no --direct-normal: sky only";
+    sun_json["left_out"] = c.direct_normal > 0 ? "the sun is below the horizon" : "no direct normal illuminance: sky only";
   double glazing_slope = 0;
   for (const Aperture& a : model.scene.apertures)
     if (!a.angular_transmittance.empty()) glazing_slope = std::max(glazing_slope, max_slope(a.angular_transmittance));
@@ -280,7 +429,10 @@ int run_illuminance(IlluminanceOptions opt) {
       {"left_out",
        {{"externally_reflected", "not computed (obstructions and the ground are black)"},
         {"internally_reflected", "not computed (room surfaces are black)"}}}};
-  if (site) summary["site"] = site_json(*site, opt.files.site);
+  if (site) {
+    summary["site"] = site_json(*site, opt.files.site);
+    if (perez) summary["site"]["source"] = perez_hour_setup->site_source;
+  }
   if (model.context) {
     nlohmann::json context = context_json(*model.context, opt.files.context);
     // The sun's bound is 0: with the sun on, the buildings in its beam were kept (load_model).
@@ -314,6 +466,10 @@ int run_illuminance(IlluminanceOptions opt) {
   outputs.commit();
   if (opt.out.empty()) write_lux_csv(stdout, grids);
   if (!opt.quiet) {
+    if (perez && !opt.weather.empty())
+      std::cerr << fmt::format("weather: {} line {}, {}; site from {}\n", opt.weather,
+                               perez_hour_setup->weather["record"]["line"].get<int>(),
+                               perez_hour_setup->weather["hour"].get<std::string>(), perez_hour_setup->site_source);
     if (sun.source != "none")
       std::cerr << fmt::format("sun: zenith {:.4f}°, azimuth {:.4f}° ({}){}\n", sun.zenith_deg, sun.azimuth_deg,
                                sun.source == "spa" ? "NREL SPA" : "given",
@@ -336,15 +492,18 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       "aperture clipped exactly against the occluders as seen from the sensor. Skies: uniform, cie-overcast\n"
       "(exact closed forms), and the fifteen CIE general skies cie-1 ... cie-15 (ISO 15469), integrated by\n"
       "adaptive cubature of the standard's formula or by the closed forms of a fit of their luminance (its\n"
-      "error bound is reported per sensor). The sun is a uniform disk 0.533 degrees across, cut exactly by what each sensor sees, scaled\n"
-      "by --direct-normal. Its position: --time and --site (NREL SPA), or --sun-zenith and --sun-azimuth.\n"
+      "error bound is reported per sensor), and the Perez all-weather sky (perez; Perez, Seals and Michalsky 1993)\n"
+      "by adaptive cubature, normalised exactly to the hour's diffuse horizontal illuminance, from a weather file's\n"
+      "hour (--weather F.epw|F.wea --time T) or from the hour's irradiances given. The sun is a uniform disk 0.533\n"
+      "degrees across, cut exactly by what each sensor sees, scaled by --direct-normal (or the weather's hour). Its\n"
+      "position: --time and --site (NREL SPA), or --sun-zenith and --sun-azimuth.\n"
       "Externally and internally reflected light is not computed.");
   auto& f = opt->files;
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
   cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--sky", opt->sky, "uniform, cie-overcast (default) or cie-1 ... cie-15")
+  cmd->add_option("--sky", opt->sky, "uniform, cie-overcast (default), cie-1 ... cie-15, or perez (the Perez all-weather sky)")
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {
             try {
@@ -369,8 +528,29 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   opt->zenith_luminance_option = cmd->add_option("--zenith-luminance", opt->zenith_luminance, "The sky's zenith luminance L_z (cd/m2)")
                                      ->check(CLI::Range(0.0, 1e7))
                                      ->excludes(opt->diffuse_horizontal_option);
-  cmd->add_option("--direct-normal", opt->direct_normal, "The sun's direct normal illuminance (lux; default 0: no sun)")
-      ->check(CLI::Range(0.0, 2e5));
+  opt->direct_normal_option =
+      cmd->add_option("--direct-normal", opt->direct_normal,
+                      "The sun's direct normal illuminance (lux; default 0: no sun; perez: default from the efficacy)")
+          ->check(CLI::Range(0.0, 2e5));
+  cmd->add_option("--weather", opt->weather,
+                  "perez: an EnergyPlus .epw or Radiance .wea file; --time picks the hour that holds it (EPW hours end at "
+                  "their time stamp); the site comes from the file unless --site is given")
+      ->check(CLI::ExistingFile);
+  opt->diffuse_irradiance_option =
+      cmd->add_option("--diffuse-horizontal-irradiance", opt->diffuse_irradiance,
+                      "perez without --weather: the hour's diffuse horizontal irradiance (W/m2)")
+          ->check(CLI::Range(0.0, 2000.0));
+  opt->direct_irradiance_option = cmd->add_option("--direct-normal-irradiance", opt->direct_irradiance,
+                                                  "perez without --weather: the hour's direct normal irradiance (W/m2)")
+                                      ->check(CLI::Range(0.0, 2000.0));
+  opt->dew_point_option = cmd->add_option("--dew-point", opt->dew_point_c,
+                                          "perez without --weather: dew point for the efficacies (C; default 11)")
+                              ->check(CLI::Range(-100.0, 60.0));
+  cmd->add_option("--perez-clamps", opt->perez_clamps,
+                  "perez: none (the published model, default; hours it cannot represent are refused) or radiance "
+                  "(gendaylit's limits: sun altitude <= 87 deg, Delta >= 0.2 for 1.065 < epsilon < 2.8, cos(theta) >= "
+                  "0.01 in the gradation, luminance and direct efficacy >= 0)")
+      ->check(CLI::IsMember({"none", "radiance"}));
   auto* time = cmd->add_option("--time", opt->time, "Date and time with UTC offset, e.g. 2026-06-21T13:00:00+02:00 (needs --site)");
   opt->sun_zenith_option = cmd->add_option("--sun-zenith", opt->sun_zenith_deg, "The sun's zenith angle (degrees)")
                                ->check(CLI::Range(0.0, 180.0))

@@ -35,3 +35,23 @@ HourSun sun_at_hour(int year, int month, int day, double hour, double time_zone_
                     double longitude_deg, double elevation_m, double pressure_hpa = 1013.25, double temperature_c = 10);
 
 }  // namespace daylit
+
+namespace daylit {
+
+// The record of a weather file that holds an instant, and its sun.
+struct WeatherHour {
+  const WeatherRecord* record = nullptr;
+  CivilTime local_standard;  // the instant in the file's local standard time
+  int hour_ending = 0;       // the hour (h − 1, h] that holds it (1–24)
+  HourSun sun;               // the record's sun (EPW: hour-ending convention; .wea: its instant)
+};
+
+// The instant t (any UTC offset) in the file's local standard time; the EPW record whose hour
+// (h − 1, h] holds it (an instant on the hour belongs to the hour it ends), or the .wea record of
+// that month and day whose time lies in that hour; its sun for the site given (latitude, EAST
+// longitude, elevation), in the year of t. Throws daylit::Error when the file has no such record,
+// or (file:line) when the record's direct or diffuse value is missing.
+WeatherHour weather_hour(const WeatherFile& file, const CivilTime& t, double latitude_deg, double longitude_deg,
+                         double elevation_m, double pressure_hpa = 1013.25, double temperature_c = 10);
+
+}  // namespace daylit

@@ -228,4 +228,46 @@ QuadratureResult perez_sky_irradiance_quadrature(const PerezSky& sky, const Sphe
                                    tolerance, transmittance);
 }
 
+PerezHour perez_hour(const PerezHourInput& in) {
+  PerezConditionInput c;
+  c.sun_zenith_deg = in.sun_zenith_deg;
+  c.extraterrestrial_normal = extraterrestrial_normal_irradiance(in.distance_au);
+  c.dew_point_c = in.dew_point_c.value_or(11);
+  int iterations = 0;
+  if (in.diffuse_horizontal_irradiance && in.direct_normal_irradiance) {
+    c.diffuse_horizontal_irradiance = *in.diffuse_horizontal_irradiance;
+    c.direct_normal_irradiance = *in.direct_normal_irradiance;
+  } else if (in.diffuse_horizontal_illuminance && in.direct_normal_illuminance) {
+    constexpr double kStart = 1367.0 / 127500.0;
+    c.diffuse_horizontal_irradiance = *in.diffuse_horizontal_illuminance * kStart;
+    c.direct_normal_irradiance = *in.direct_normal_illuminance * kStart;
+    for (iterations = 1; iterations <= 100; ++iterations) {
+      const PerezCondition p = perez_condition(c, in.clamps);
+      if (!(p.direct_efficacy > 0) && *in.direct_normal_illuminance > 0)
+        throw Error("the direct luminous efficacy is 0: the direct normal irradiance cannot be found from the illuminance");
+      const double dh = *in.diffuse_horizontal_illuminance / p.diffuse_efficacy;
+      const double dn = *in.direct_normal_illuminance > 0 ? *in.direct_normal_illuminance / p.direct_efficacy : 0;
+      const bool converged = std::abs(dh - c.diffuse_horizontal_irradiance) <= 1e-9 * dh &&
+                             std::abs(dn - c.direct_normal_irradiance) <= 1e-9 * std::max(dn, 1.0);
+      c.diffuse_horizontal_irradiance = dh;
+      c.direct_normal_irradiance = dn;
+      if (converged) break;
+    }
+    iterations = std::min(iterations, 100);
+  } else {
+    throw Error("the Perez sky needs the diffuse horizontal and direct normal irradiance (W/m²), or both illuminances (lux)");
+  }
+  const PerezCondition condition = perez_condition(c, in.clamps);
+  PerezHour h{PerezSky(condition, in.sun, in.clamps)};
+  h.diffuse_horizontal_irradiance = c.diffuse_horizontal_irradiance;
+  h.direct_normal_irradiance = c.direct_normal_irradiance;
+  h.iterations = iterations;
+  h.dew_point_assumed = !in.dew_point_c;
+  h.diffuse_lux_from_efficacy = !in.diffuse_horizontal_illuminance;
+  h.direct_lux_from_efficacy = !in.direct_normal_illuminance;
+  h.diffuse_horizontal_lux = in.diffuse_horizontal_illuminance.value_or(condition.diffuse_efficacy * c.diffuse_horizontal_irradiance);
+  h.direct_normal_lux = in.direct_normal_illuminance.value_or(condition.direct_efficacy * c.direct_normal_irradiance);
+  return h;
+}
+
 }  // namespace daylit

@@ -121,4 +121,31 @@ QuadratureResult perez_sky_irradiance_quadrature(const PerezSky& sky, const Sphe
                                                  double tolerance,
                                                  const std::function<double(const Vec3&)>& transmittance = {});
 
+// One hour's Perez sky and the sun's direct normal illuminance, from what a weather file or the
+// command line gives. The condition (ε, Δ) needs irradiances; the sky's and the sun's scale need
+// illuminances. Where an illuminance is not given it is the irradiance times Perez's efficacy
+// (1990 eqs. 7–8); where only illuminances are given (a .wea in lux), the irradiances are found
+// by fixed-point iteration E = lux / efficacy(ε(E), Δ(E)) from E = lux · 1367/127500 (the ratio
+// of the solar constants that gendaymtx starts from), to 1e-9 relative or 100 steps (Radiance
+// stops after 5 steps or within 10 W/m²); `iterations` says how many were taken.
+struct PerezHourInput {
+  std::optional<double> diffuse_horizontal_irradiance, direct_normal_irradiance;    // W/m²
+  std::optional<double> diffuse_horizontal_illuminance, direct_normal_illuminance;  // lux
+  std::optional<double> dew_point_c;  // 11 °C (gendaymtx's default) when not given
+  double sun_zenith_deg = 0;          // the true sun
+  Vec3 sun{0, 0, 1};                  // unit, towards the sun (the frame the sky is evaluated in)
+  double distance_au = 1;             // Earth–sun distance (SPA's R) for E_0
+  PerezClamps clamps = PerezClamps::none;
+};
+struct PerezHour {
+  PerezSky sky;
+  double diffuse_horizontal_lux = 0, direct_normal_lux = 0;
+  double diffuse_horizontal_irradiance = 0, direct_normal_irradiance = 0;  // W/m², as used for ε and Δ
+  bool diffuse_lux_from_efficacy = false, direct_lux_from_efficacy = false, dew_point_assumed = false;
+  int iterations = 0;  // of the illuminance-to-irradiance iteration (0 when irradiances were given)
+};
+// Throws daylit::Error as perez_condition and PerezSky do, and when neither the irradiances nor
+// the illuminances are given, or the iteration meets a zero efficacy.
+PerezHour perez_hour(const PerezHourInput& input);
+
 }  // namespace daylit
