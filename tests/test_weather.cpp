@@ -220,3 +220,38 @@ TEST_CASE("an hour-ending record's sun is taken at the half hour, or in the midd
   CHECK(!sun_for_hour_ending(1986, 1, 1, 24, -6, lat, lon, h).up);
   CHECK(sun_for_hour_ending(2020, 2, 29, 12, -7, 40, -105, 1600).up);
 }
+
+TEST_CASE("an instant picks the weather record whose hour holds it, in the file's local standard time") {
+  const WeatherFile f = read_weather_file(kData + "/chicago-ohare-tmy3-jan1-3.epw");
+  auto pick = [&](const char* iso) { return weather_hour(f, parse_iso8601_time(iso), 41.98, -87.92, 201); };
+  // 12:00 local standard time ends the hour 11:00–12:00: record 1/1 hour 12 (line 20); the same
+  // instant in UTC or in daylight time (UTC−5) picks it too.
+  CHECK(pick("2026-01-01T12:00:00-06:00").record->line == 20);
+  CHECK(pick("2026-01-01T18:00:00Z").record->line == 20);
+  CHECK(pick("2026-01-01T13:00:00-05:00").record->line == 20);
+  CHECK(pick("2026-01-01T11:00:00.001-06:00").record->line == 20);
+  CHECK(pick("2026-01-01T12:00:00.001-06:00").record->line == 21);
+  // Midnight ends the day's 24th hour: the record of 1 January, hour 24 (line 32).
+  const WeatherHour midnight = pick("2026-01-02T00:00:00-06:00");
+  CHECK(midnight.record->line == 32);
+  CHECK(midnight.hour_ending == 24);
+  CHECK(!midnight.sun.up);
+  const WeatherHour noon = pick("2026-01-01T12:00:00-06:00");
+  CHECK(noon.sun.up);
+  CHECK(noon.sun.instant.year == 2026);  // the sun of the year asked, the record's values (1986)
+  CHECK(noon.sun.instant.hour == 11);
+  CHECK(noon.sun.instant.minute == 30);
+  check_error([&] { pick("2026-01-04T12:00:00-06:00"); }, "no record for 01-04 hour 12 (11:00–12:00 local standard time, UTC-6)");
+  // A record with a missing code is refused by file and line when it is the hour asked for.
+  const WeatherFile leap = read_weather_file(kData + "/leap-2020-feb28-mar1.epw");
+  check_error([&] { weather_hour(leap, parse_iso8601_time("2020-02-29T11:00:00-07:00"), 40, -105, 1600); },
+              "leap-2020-feb28-mar1.epw:43: the direct normal or diffuse horizontal value of this hour is missing");
+  CHECK(weather_hour(leap, parse_iso8601_time("2020-02-29T09:30:00-07:00"), 40, -105, 1600).record->line == 42);
+  // A .wea record is the one of that day whose time lies in the hour; its sun is at that time.
+  const WeatherFile wea = read_weather_file(kData + "/chicago-ohare-tmy3-jan1-3.wea");
+  const WeatherHour w = weather_hour(wea, parse_iso8601_time("2026-01-01T12:00:00-06:00"), 41.98, -87.92, 201);
+  CHECK(w.record->hour == 11.5);
+  CHECK(w.sun.instant.hour == 11);
+  CHECK(w.sun.instant.minute == 30);
+  CHECK(w.sun.position.zenith_deg == noon.sun.position.zenith_deg);
+}
