@@ -486,7 +486,7 @@ int run_illuminance(IlluminanceOptions opt) {
 
 std::function<int()> add_illuminance_command(CLI::App& app) {
   auto opt = std::make_shared<IlluminanceOptions>();
-  CLI::App* cmd = app.add_subcommand("illuminance", "Illuminance (lux) on sensor grids from a CIE sky and the sun");
+  CLI::App* cmd = app.add_subcommand("illuminance", "Illuminance (lux) on sensor grids from a CIE or Perez sky and the sun");
   cmd->description(
       "Computes the illuminance at every sensor from the sky and the sun seen through the apertures, each\n"
       "aperture clipped exactly against the occluders as seen from the sensor. Skies: uniform, cie-overcast\n"
@@ -551,7 +551,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
                   "(gendaylit's limits: sun altitude <= 87 deg, Delta >= 0.2 for 1.065 < epsilon < 2.8, cos(theta) >= "
                   "0.01 in the gradation, luminance and direct efficacy >= 0)")
       ->check(CLI::IsMember({"none", "radiance"}));
-  auto* time = cmd->add_option("--time", opt->time, "Date and time with UTC offset, e.g. 2026-06-21T13:00:00+02:00 (needs --site)");
+  auto* time = cmd->add_option("--time", opt->time, "Date and time with UTC offset, e.g. 2026-06-21T13:00:00+02:00 (needs --site, or --weather for perez)");
   opt->sun_zenith_option = cmd->add_option("--sun-zenith", opt->sun_zenith_deg, "The sun's zenith angle (degrees)")
                                ->check(CLI::Range(0.0, 180.0))
                                ->excludes(time);
