@@ -72,7 +72,7 @@ double clausen(double x) { return gsl_sf_clausen(x); }
 
 long double clausen(long double x) { return clausen_series(x); }
 
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 real::quad clausen(real::quad x) { return clausen_series(x); }
 #endif
 

@@ -22,7 +22,7 @@ double clausen(double x);
 // (Lewin 1958, eq. 4.21; the ratio of terms is ≤ 1/4 there), with ζ(2n) from Euler–Maclaurin.
 // Absolute error a few units of R's roundoff times max(|x log|x||, 1).
 long double clausen(long double x);
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 real::quad clausen(real::quad x);
 #endif
 

@@ -49,7 +49,7 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
                 " the recurrences of Theorem 4 lose more digits than __float128 carries");
   const Vec3 N = normalized(plane_normal);
   const double side = dot(N, plane_point - origin);
-  if (region.empty() || side == 0 || exitance.empty()) return {0, 0};
+  if (region.empty() || side == 0 || exitance.empty()) return {0, 0, double_precision, 1};
   const Vec3 w = side > 0 ? N : -N;
   const double h = std::abs(side);
   for (const auto& loop : region.loops)
@@ -111,7 +111,7 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
     reexpansion += k * std::abs(n1 * values[i] + n2 * values[i + 1] + n3 * values[i + 2]);
   }
   const double reexpansion_error = double(8 * 0x1p-64L * reexpansion) / std::abs(r.value);
-  return {r.value, r.relative_error + reexpansion_error};
+  return {r.value, r.relative_error + reexpansion_error, r.precision, r.condition};
 }
 
 }  // namespace daylit

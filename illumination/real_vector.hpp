@@ -8,8 +8,19 @@
 
 #include "geometry/vec3.hpp"
 
+// DAYLIT_HAVE_FLOAT128 (1 or 0): whether the kernels have a __float128 rung. The build may set it
+// (the CMake option DAYLIT_FLOAT128); where it does not, it is 1 where the compiler has the type
+// (__SIZEOF_FLOAT128__) and libquadmath's functions (GCC; not Clang, which lacks some of them).
+#ifndef DAYLIT_HAVE_FLOAT128
 #if defined(__SIZEOF_FLOAT128__) && !defined(__clang__)
+#define DAYLIT_HAVE_FLOAT128 1
+#else
+#define DAYLIT_HAVE_FLOAT128 0
+#endif
+#endif
+#if DAYLIT_HAVE_FLOAT128
 #include <quadmath.h>
+// The older spelling, still tested with #ifdef outside illumination/ (cli/bench_*.cpp).
 #define DAYLIT_HAS_FLOAT128 1
 #endif
 
@@ -26,7 +37,7 @@ using std::log1p;
 using std::round;
 using std::sin;
 using std::sqrt;
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 using quad = __float128;
 inline quad abs(quad x) { return fabsq(x); }
 inline quad atan2(quad y, quad x) { return atan2q(y, x); }
@@ -43,7 +54,7 @@ template <class R>
 R pi() {
   return R(3.14159265358979323846264338327950288L);
 }
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 template <>
 inline quad pi<quad>() {
   static const quad value = 4 * atanq(quad(1));  // M_PIq needs GNU literal suffixes
@@ -56,7 +67,7 @@ template <class R>
 constexpr R unit_roundoff() {
   return std::numeric_limits<R>::epsilon() / 2;
 }
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 template <>
 inline quad unit_roundoff<quad>() {
   return quad(0x1p-113L);  // exact: 2^-113 is a long double
@@ -96,6 +107,13 @@ template <class R> R norm(const V3<R>& a) {
   if (!(m > 0)) return R(0);
   const V3<R> s = a / m;
   return m * sqrt(dot(s, s));
+}
+
+// v/|v| formed in R from a double vector (non-zero).
+template <class R>
+V3<R> unit(const Vec3& v) {
+  const V3<R> r(v);
+  return r / norm(r);
 }
 
 }  // namespace daylit::real
