@@ -241,8 +241,6 @@ struct Row {
   double value = 0;
 };
 
-const char* precision_name(int p) { return p == 0 ? "double" : p == 1 ? "long double" : "float128"; }
-
 Escalated<double> exact_moment(const KernelCase& c) {
   return c.v ? double_axis_moment_with_accuracy(c.region, c.w, *c.v, c.n) : axial_moment_with_accuracy(c.region, c.w, c.n);
 }

@@ -229,23 +229,22 @@ R evaluate(const ExitancePolynomial& M, const V3<R>& x) {
 
 // ∫_a^b f by bisection until each panel's error estimate is within `tolerance` of the arc's
 // ∫|f| times the panel's share of [a, b], or within 50 u of the panel's own ∫|f| (where rounding,
-// not the rule, limits it). Adds to value and magnitude. Sets `failed` (and stops refining) where
+// not the rule, limits it). Adds ∫ f and ∫|f| to `sum`. Sets `failed` (and stops refining) where
 // the estimate is not a number (the integrand overflowed) or `budget` panels were used up.
 template <class R, class F>
-void adaptive(const F& f, R a, R b, R tolerance_per_length, int& budget, R& value, R& magnitude, bool& failed) {
+void adaptive(const F& f, R a, R b, R tolerance_per_length, int& budget, real::Tracked<R>& sum, bool& failed) {
   const quadrature::KronrodPanel<R> p = quadrature::gauss_kronrod_15(f, a, b);
   --budget;
   const R allowed = std::max(tolerance_per_length * (b - a), R(50) * real::unit_roundoff<R>() * p.magnitude);
   const bool converged = p.error <= allowed;
   if (converged || budget <= 0 || !(p.error == p.error) || failed) {
     failed |= !converged;
-    value += p.integral;
-    magnitude += p.magnitude;
+    sum.add(p.integral, p.magnitude);
     return;
   }
   const R m = (a + b) / 2;
-  adaptive(f, a, m, tolerance_per_length, budget, value, magnitude, failed);
-  adaptive(f, m, b, tolerance_per_length, budget, value, magnitude, failed);
+  adaptive(f, a, m, tolerance_per_length, budget, sum, failed);
+  adaptive(f, m, b, tolerance_per_length, budget, sum, failed);
 }
 
 // The boundary term of a polynomial exitance, (1/π) Σ μ ∫_arc M(x(u)) (n·u)(w·u) ds, in R.
@@ -264,12 +263,12 @@ VectorSum<R> exitance_boundary_sum(const SphericalRegion& region, const Vec3& or
     // ∫|f| first, coarsely, to set the absolute tolerance of the arc.
     const quadrature::KronrodPanel<R> coarse = quadrature::gauss_kronrod_15(f, R(0), arc.length);
     const R tolerance_per_length = R(tolerance) * coarse.magnitude / arc.length;
-    R value = 0, magnitude = 0;
+    real::Tracked<R> integral;
     // 2000 panels (30,000 evaluations) per arc: a receiver 1e-9 from the luminaire's plane needs
     // a few hundred, where the integrand's poles come within 1e-9 of the arc's ends.
     int budget = 2000;
-    adaptive(f, R(0), arc.length, tolerance_per_length, budget, value, magnitude, failed);
-    sum.add((value / pi) * mu, magnitude / pi);
+    adaptive(f, R(0), arc.length, tolerance_per_length, budget, integral, failed);
+    sum.add((integral.value / pi) * mu, integral.magnitude / pi);
   });
   return sum;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "illumination/cosine_power_arc.hpp"
 #include "illumination/precision_escalation.hpp"
@@ -52,27 +53,25 @@ std::vector<Sum<R>> axial_moment_sums(const std::vector<CosinePowerArc<R>>& arcs
   return tau;
 }
 
-// The complementary form of τ^n (moments.hpp); false where it does not apply (an edge within
+// The complementary form of τ^n (moments.hpp); nullopt where it does not apply (an edge within
 // ~1e-3 rad of ±w, where the tails converge too slowly, or a winding number that does not come
 // out an integer).
 template <class R>
-bool complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n, Sum<R>& out) {
+std::optional<Sum<R>> complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
   const R two_pi = R(2) * real::pi<R>();
   R winding = n % 2 == 0 ? sigma.value : R(0);
   for (const auto& arc : arcs) winding += n % 2 == 0 ? arc.odd_series_times_wm() : arc.even_series_times_wm();
   winding /= two_pi;
   const R N = real::round(winding);
-  if (!(real::abs(winding - N) < R(0.05))) return false;
-  out = Sum<R>{};
+  if (!(real::abs(winding - N) < R(0.05))) return std::nullopt;
+  Sum<R> out;
   out.add(two_pi * N);
   for (const auto& arc : arcs) {
-    R tail, magnitude;
-    if (!arc.tail(n + 1, tail, magnitude)) return false;
-    const R wm = arc.w_dot_normal();
-    out.add(-wm * tail, real::abs(wm) * magnitude);
+    const std::optional<Sum<R>> tail = arc.tail(n + 1);
+    if (!tail) return std::nullopt;
+    out += -arc.w_dot_normal() * *tail;
   }
-  out = out / R(n + 1);
-  return true;
+  return out / R(n + 1);
 }
 
 // τ^n for a unit axis by whichever of eq. 11 and the complementary form cancels less.
@@ -80,10 +79,8 @@ template <class R>
 Sum<R> axial_moment_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
   const Sum<R> forward = axial_moment_sums<R>(arcs, sigma, n)[n];
   if (forward.magnitude <= R(64) * real::abs(forward.value)) return forward;
-  Sum<R> complementary;
-  if (complementary_axial_sum(arcs, sigma, n, complementary) &&
-      tracked_condition(complementary) < tracked_condition(forward))
-    return complementary;
+  const std::optional<Sum<R>> complementary = complementary_axial_sum(arcs, sigma, n);
+  if (complementary && tracked_condition(*complementary) < tracked_condition(forward)) return *complementary;
   return forward;
 }
 

@@ -28,11 +28,10 @@ namespace {
 template <class R>
 Tracked<R> base_moment_edge(const WFrameArc<R>& e) {
   if (e.wm == 0) return {};
-  R m0 = 0, m1 = 0;
-  const R b1 = lambda_bracket<R>(e.c, e.kappa(), e.sin1, e.cos1, &m1);
-  const R b0 = lambda_bracket<R>(e.c, e.kappa(), e.sin0, e.cos0, &m0);
+  const Tracked<R> b1 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin1, e.cos1);
+  const Tracked<R> b0 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin0, e.cos0);
   const R sign = e.wm > 0 ? R(-0.25) : R(0.25);
-  return {sign * (b1 - b0), (m1 + m0) / 4};
+  return {sign * (b1.value - b0.value), (b1.magnitude + b0.magnitude) / 4};
 }
 
 // The moments J(a, b, e) = ∫_A u1^a u2^b u3^e dσ in the frame (e1, e2, w) (rational_moments.hpp),
