@@ -9,6 +9,7 @@
 #include "geometry/error.hpp"
 #include "illumination/cosine_power_arc.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "illumination/orthonormal_basis.hpp"
 #include "illumination/precision_escalation.hpp"
 #include "illumination/rational_edge.hpp"
 #include "illumination/solid_angle.hpp"
@@ -139,22 +140,10 @@ void check_side(const SphericalRegion& region, const Vec3& w) {
 
 }  // namespace
 
-namespace {
-
-// The coordinate axis least aligned with the unit vector w: crossed with w, it gives e1 of
-// frame_about() (in double there, in the precision of the sum in rational_moment()).
-Vec3 least_aligned_axis(const Vec3& w) {
-  return std::abs(w.x) <= std::abs(w.y) && std::abs(w.x) <= std::abs(w.z)
-             ? Vec3{1, 0, 0}
-             : (std::abs(w.y) <= std::abs(w.z) ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
-}
-
-}  // namespace
-
 AxisFrame frame_about(const Vec3& w_in) {
   const Vec3 w = normalized(w_in);
-  const Vec3 e1 = normalized(cross(least_aligned_axis(w), w));
-  return {e1, cross(w, e1), w};
+  const PerpendicularBasis<double> f = perpendicular_basis(real::V3<double>(w));
+  return {{f.e1.x, f.e1.y, f.e1.z}, {f.e2.x, f.e2.y, f.e2.z}, w};
 }
 
 RationalMoment rational_base_moment(const SphericalRegion& region, const Vec3& w) {
@@ -222,8 +211,9 @@ RationalMoment rational_moment(const SphericalRegion& region, const std::vector<
   RationalMoment m = escalate_tracked(degree + q, [&](auto r) {
     using R = decltype(r);
     const real::V3<R> wr = real::unit<R>(w);
-    const real::V3<R> c = cross(real::V3<R>(least_aligned_axis(normalized(w))), wr);
-    const real::V3<R> e1 = c / real::norm(c), e2 = cross(wr, e1);
+    const PerpendicularBasis<R> basis = perpendicular_basis(wr);  // frame_about() in R
+    const real::V3<R>& e1 = basis.e1;
+    const real::V3<R>& e2 = basis.e2;
     // c[a][b]: coefficient of u1^a u2^b u3^{d−a−b}, with the magnitudes of its terms.
     int d = 0;
     std::vector<std::vector<Tracked<R>>> coef(1, std::vector<Tracked<R>>(1, exact(R(1))));

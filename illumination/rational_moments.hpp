@@ -56,7 +56,8 @@ RationalMoment frame_polynomial_moment(const SphericalRegion& region, const Vec3
                                        const std::vector<FrameMonomial>& terms,
                                        std::vector<double>* term_values = nullptr);
 
-// A unit frame (e1, e2, ŵ) completing ŵ = w/|w|, right-handed.
+// A unit frame (e1, e2, ŵ) completing ŵ = w/|w|, right-handed (Duff et al.'s basis,
+// orthonormal_basis.hpp).
 struct AxisFrame {
   Vec3 e1, e2, w;
 };
