@@ -80,9 +80,8 @@ double tracked_condition(const real::Tracked<R>& s) {
 }
 template <class Container>
 double tracked_condition(const Container& sums) {
-  double k = 1;
-  bool any = false;
-  for (const auto& s : sums) k = any ? std::max(k, tracked_condition(s)) : tracked_condition(s), any = true;
+  double k = 1;  // no element cancels below 1 (tracked_sum.hpp)
+  for (const auto& s : sums) k = std::max(k, tracked_condition(s));
   return k;
 }
 
