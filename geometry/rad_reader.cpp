@@ -115,7 +115,15 @@ std::string foreign_file_kind(std::string_view text) {
   }
   if (vertex && face)
     return "a Wavefront OBJ model ('v' and 'f' lines), not a Radiance scene: convert it with Radiance's obj2rad";
-  if (head.find('\0') != std::string_view::npos) return "a binary file (it holds NUL bytes), not a scene description";
+  // Mostly control bytes (not white space): a binary file. A few stray bytes in a text file are
+  // left to the parser, which names their line.
+  const auto control = std::count_if(head.begin(), head.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x20 && u != '\t' && u != '\n' && u != '\r' && u != '\f' && u != '\v';
+  });
+  if (control >= 16 && control * 20 > std::ptrdiff_t(head.size()))
+    return "a binary file (" + std::to_string(control) + " of its first " + std::to_string(head.size()) +
+           " bytes are control characters), not a scene description";
   return "";
 }
 
