@@ -215,8 +215,9 @@ struct VisibilityEngine::Impl {
     const auto& wv = w.vertices;
     const auto all = [&](auto&& pred) { return std::all_of(ov.begin(), ov.end(), pred); };
     // A luminaire's occluders must lie between it and the receiver: a piece with no vertex strictly
-    // on p's side of the aperture's plane (sh = sign N_W·(p − w0)) hides nothing. First, since in a
-    // model seen from one of its surfaces about half the surfaces lie behind another.
+    // on p's side of the aperture's plane (sh = sign N_W·(p − w0)) hides nothing. Tested first:
+    // seen from a surface of a model, the rest of the building behind that surface is all of this
+    // kind, and the box test in collect() lets through only the pieces that touch the plane.
     if (!beyond && all([&](const Vec3& v) { return sh * Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, wv[0]) <= 0; }))
       return false;
     if (horizon && all([&](const Vec3& v) { return v.z <= p.z; })) return false;
@@ -252,7 +253,7 @@ struct VisibilityEngine::Impl {
     const auto& wv = w.vertices;
     const Vec3 eb = wv[w.base_b] - wv[0], ec = wv[w.base_c] - wv[0];
     // Without the occluders beyond: p's side of the aperture's plane, sh·N_W·(x − w0) ≥ 0, first,
-    // as it culls most where every surface is a luminaire (whole BVH subtrees behind a wall).
+    // so that whole BVH subtrees behind the luminaire's surface are dropped at once.
     if (!beyond) {
       const Vec3 m = double(sh) * cross(eb, ec);
       planes.push_back({m, norm(eb) * norm(ec), dot(m, p - wv[0]), norm(p - wv[0])});

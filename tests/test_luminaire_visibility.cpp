@@ -349,14 +349,16 @@ TEST_CASE("on seeded random scenes the luminaire's region is the default one whe
         const Vec3 n = normalized(random.point(-1, 1) + Vec3{0, 0, 0.01});
         INFO("grid " << grid << " trial " << trial << " receiver " << p.x << " " << p.y << " " << p.z);
         VisibilityCounters counters, beyond_counters;
+        // Every other receiver with the horizon cut as well, which the new clip must not disturb.
         const auto omega = [&](const VisibilityEngine& e, bool beyond, VisibilityCounters& c) {
-          return solid_angle(e.visible_region(p, n, 0, c, luminaire_options(beyond)));
+          VisibilityOptions options = luminaire_options(beyond);
+          options.clip_to_horizon = s % 2 == 1;
+          return solid_angle(e.visible_region(p, n, 0, c, options));
         };
         // Directions certified to 2^-45 of their length: a few 1e-14 of the luminaire's solid
         // angle, which bounds every region here.
         VisibilityCounters unobstructed;
-        const double luminaire = solid_angle(VisibilityEngine(Scene{{}, {{w, 1.0}}, {}, {}}, GeometryMode::exact)
-                                                 .visible_region(p, n, 0, unobstructed, luminaire_options(true)));
+        const double luminaire = omega(VisibilityEngine(Scene{{}, {{w, 1.0}}, {}, {}}, GeometryMode::exact), true, unobstructed);
         const double bound = 4e-14 * std::max(luminaire, 1e-3);
         // Nothing beyond: both options give the same region.
         const double front_new = omega(exact_front, false, counters), front_old = omega(exact_front, true, counters);
