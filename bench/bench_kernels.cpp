@@ -147,7 +147,7 @@ std::vector<KernelCase> kernel_cases() {
 
 // ── Reference ───────────────────────────────────────────────────────────────────────────────
 
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 using Ref = real::quad;
 constexpr const char* kReferenceName = "Arvo eqs. 11/14 in __float128";
 constexpr double kReferenceRoundoff = 0x1p-113;
@@ -240,10 +240,8 @@ struct Row {
   double value = 0;
 };
 
-const char* precision_name(int p) { return p == 0 ? "double" : p == 1 ? "long double" : "float128"; }
-
-double exact_moment(const KernelCase& c) {
-  return c.v ? double_axis_moment(c.region, c.w, *c.v, c.n) : axial_moment(c.region, c.w, c.n);
+Escalated<double> exact_moment(const KernelCase& c) {
+  return c.v ? double_axis_moment_with_accuracy(c.region, c.w, *c.v, c.n) : axial_moment_with_accuracy(c.region, c.w, c.n);
 }
 
 TruncatedMoment truncated_moment(const KernelCase& c, double tolerance) {
@@ -277,11 +275,12 @@ std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const K
   stage.show(prefix + "exact");
   {
     Row r{c.name, "exact", ""};
-    r.value = exact_moment(c);
-    r.precision = last_moment_accuracy().precision;
-    r.relative_error_bound = last_moment_accuracy().relative_error;
+    const Escalated<double> m = exact_moment(c);
+    r.value = m.value;
+    r.precision = m.precision;
+    r.relative_error_bound = m.relative_error;
     r.relative_error = relative(r.value);
-    r.time_s = seconds_per_evaluation([&](long) { return exact_moment(c); }, s);
+    r.time_s = seconds_per_evaluation([&](long) { return exact_moment(c).value; }, s);
     rows.push_back(r);
   }
   for (double tolerance : s.tolerances) {
@@ -347,8 +346,8 @@ std::vector<EdgeCostRow> measure_edge_cost(const KernelSuiteSettings& s, StageLi
         stage.show(fmt::format("bench kernels: cost per edge, {} with {} edges, n = {}", function, k, n));
         const bool all = function[std::char_traits<char>::length(function) - 1] == 's';
         const auto evaluate = [&](long) { return all ? axial_moments(region, w, n)[std::size_t(n)] : axial_moment(region, w, n); };
-        evaluate(0);
-        const int precision = last_moment_accuracy().precision;
+        const int precision = all ? axial_moments_with_accuracy(region, w, n).precision
+                                  : axial_moment_with_accuracy(region, w, n).precision;
         rows.push_back({function, k, n, seconds_per_evaluation(evaluate, s), precision});
       }
     }

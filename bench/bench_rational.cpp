@@ -41,7 +41,7 @@ namespace {
 using bench::thread_cpu_seconds;
 
 // The precision of the references: __float128 where the compiler has it.
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 using Reference = real::quad;
 #else
 using Reference = long double;
@@ -167,7 +167,7 @@ std::vector<MomentRow> moments(bool quick) {
       const double ref = rational_moment_n11(region, v, n, a, b, w, {RationalMethod::semi_analytic, 512}).value;
       auto add = [&](const std::string& method, double parameter, const RationalMomentOptions& o) {
         const RationalMoment m = rational_moment_n11(region, v, n, a, b, w, o);
-        const int precision = last_rational_diagnostics().precision;
+        const int precision = m.precision;
         const double t = time_per_call([&] { sink = rational_moment_n11(region, v, n, a, b, w, o).value; }, budget);
         rows.push_back({n, edges, method, parameter, t, std::abs(m.value - ref) / std::abs(ref), m.relative_error, precision});
       };
@@ -212,11 +212,10 @@ std::vector<DegreeRow> degrees(bool quick) {
       for (int i = 0; i <= D; ++i)
         for (int j = 0; i + j <= D; ++j) M.push_back({(i + 2 * j) % 3 == 0 ? -0.3 / (1 + i) : 0.7 / (1 + j), i, j, D - i - j});
       const LuminaireIrradiance E = polynomial_luminaire_irradiance(region, g.o, g.n, g.c0, cross(g.e1, g.e2), M);
-      const RationalDiagnostics diag = last_rational_diagnostics();
       const double t = time_per_call(
           [&] { sink = polynomial_luminaire_irradiance(region, g.o, g.n, g.c0, cross(g.e1, g.e2), M).value; },
           quick ? 0.002 : 0.05);
-      rows.push_back({g.name, D, t, E.relative_error, diag.double_condition, diag.precision});
+      rows.push_back({g.name, D, t, E.relative_error, E.condition, E.precision});
     }
   }
   return rows;

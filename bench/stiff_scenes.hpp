@@ -23,6 +23,7 @@
 
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
+#include "illumination/gauss_legendre.hpp"
 #include "materials/glass_transmittance.hpp"
 
 namespace daylit::stiff {
@@ -65,30 +66,14 @@ struct StiffCase {
 
 namespace detail {
 
-// Nodes and weights of the 20-point Gauss–Legendre rule on [−1, 1], by Newton's method on P_20
-// in long double.
+// The 20-point Gauss–Legendre rule on [−1, 1] (illumination/gauss_legendre.hpp).
 struct GaussLegendre20 {
   static constexpr int n = 20;
   std::array<Real, n> x{}, w{};
   GaussLegendre20() {
-    const Real pi = 3.141592653589793238462643383279502884L;
-    for (int i = 0; i < n; ++i) {
-      Real t = std::cos(pi * (i + 0.75L) / (n + 0.5L)), dp = 0;
-      for (int iter = 0; iter < 100; ++iter) {
-        Real p0 = 1, p1 = t;
-        for (int k = 2; k <= n; ++k) {
-          const Real p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (t * p1 - p0) / (t * t - 1);
-        const Real step = p1 / dp;
-        t -= step;
-        if (std::abs(step) < 1e-21L) break;
-      }
-      x[std::size_t(i)] = t;
-      w[std::size_t(i)] = 2 / ((1 - t * t) * dp * dp);
-    }
+    const quadrature::GaussLegendreRule rule = quadrature::gauss_legendre(n);
+    std::copy(rule.x.begin(), rule.x.end(), x.begin());
+    std::copy(rule.w.begin(), rule.w.end(), w.begin());
   }
 };
 

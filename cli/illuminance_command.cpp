@@ -29,15 +29,14 @@
 #include "materials/glass_transmittance.hpp"
 #include "simulation/illuminance.hpp"
 #include "sky/hour_sun.hpp"
+#include "sky/model_sun.hpp"
 #include "sky/perez_sky.hpp"
-#include "sky/solar_position.hpp"
+#include "sky/sky_model.hpp"
 #include "sky/weather_file.hpp"
 
 namespace daylit::cli {
 
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180;
 
 struct IlluminanceOptions {
   ModelFiles files;
@@ -59,75 +58,14 @@ struct IlluminanceOptions {
               *dew_point_option = nullptr;
 };
 
-// "uniform", "cie-overcast" or "cie-1" … "cie-15"; 0 for the first two, else the CIE type.
-int cie_type(const std::string& sky) {
-  if (sky == "uniform" || sky == "cie-overcast" || sky == "perez") return 0;
-  if (sky.rfind("cie-", 0) == 0) {
-    const std::string n = sky.substr(4);
-    if (!n.empty() && n.size() <= 2 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      const int type = std::stoi(n);
-      if (type >= 1 && type <= 15) return type;
-    }
-  }
-  throw Error("unknown sky '" + sky + "': use uniform, cie-overcast, cie-1 … cie-15 (ISO 15469 types) or perez");
-}
-
-struct SunPosition {
-  std::string source;  // "spa", "given" or "none"
-  double zenith_deg = 0, azimuth_deg = 0;
-  Vec3 direction{0, 0, 1};  // model frame
-  double distance_au = 1;   // Earth–sun distance (SPA's R; 1 when the position is given)
-};
-
-// The sun from --time and the site (SPA), or as given, turned into the model frame by the site's
-// north (+y is north without a site).
-SunPosition sun_position(const IlluminanceOptions& opt, const std::optional<Site>& site) {
-  SunPosition sun;
+// The sun from --time and the site (SPA), or as given, or none.
+ModelSun sun_position(const IlluminanceOptions& opt, const std::optional<Site>& site) {
   if (!opt.time.empty()) {
     if (!site) throw Error("--time needs --site: the sun's position depends on where the model stands");
-    SolarPositionInput in;
-    in.time = parse_iso8601_time(opt.time);
-    in.latitude_deg = site->origin().latitude_deg;
-    in.longitude_deg = site->origin().longitude_deg;
-    in.elevation_m = site->origin().height_m;
-    in.pressure_hpa = opt.pressure_hpa;
-    in.temperature_c = opt.temperature_c;
-    const SolarPosition p = solar_position(in);
-    sun.source = "spa";
-    sun.zenith_deg = p.zenith_deg;
-    sun.azimuth_deg = p.azimuth_deg;
-    sun.distance_au = p.distance_au;
-  } else if (opt.sun_zenith_option->count() > 0) {
-    sun.source = "given";
-    sun.zenith_deg = opt.sun_zenith_deg;
-    sun.azimuth_deg = opt.sun_azimuth_deg;
-  } else {
-    sun.source = "none";
-    return sun;
+    return sun_at_instant(opt.time, *site, opt.pressure_hpa, opt.temperature_c);
   }
-  if (site) {
-    sun.direction = site->model_direction(sun.azimuth_deg, 90 - sun.zenith_deg);
-  } else {
-    const double z = sun.zenith_deg * kDegree, a = sun.azimuth_deg * kDegree;
-    sun.direction = {std::sin(a) * std::sin(z), std::cos(a) * std::sin(z), std::cos(z)};
-  }
-  return sun;
-}
-
-// The largest relative luminance L/L_z of the sky: the bound on what context buildings left out
-// can hide. Overcast: the zenith (1); uniform: 1; CIE general: the larger of the sun's direction
-// (the circumsolar peak) and 40,000 directions spread over the hemisphere.
-double max_relative_luminance(const DaylightConditions& c) {
-  if (c.sky != DaylightConditions::Sky::cie_general && c.sky != DaylightConditions::Sky::perez) return 1;
-  auto relative = [&](const Vec3& u) { return c.perez ? c.perez->relative_luminance(u) : c.cie->relative_luminance(u); };
-  double m = relative(c.perez ? c.perez->sun() : c.sun);
-  constexpr int kCount = 40000;
-  const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
-  for (int i = 0; i < kCount; ++i) {
-    const double z = 1 - (i + 0.5) / kCount, r = std::sqrt(1 - z * z);
-    m = std::max(m, relative({r * std::cos(golden * i), r * std::sin(golden * i), z}));
-  }
-  return m;
+  if (opt.sun_zenith_option->count() > 0) return sun_given(opt.sun_zenith_deg, opt.sun_azimuth_deg, site);
+  return {};
 }
 
 struct GridLux {
@@ -165,7 +103,7 @@ void write_lux_csv(const std::string& path, const std::vector<GridLux>& grids) {
 // given on the command line with the sun of --time/--site or --sun-zenith/--sun-azimuth.
 struct PerezSetup {
   std::optional<PerezHour> hour;
-  SunPosition sun;
+  ModelSun sun;
   nlohmann::json weather;           // what was read and which hour was used
   std::string site_source = "none";  // "--site", "weather file" or "none"
 };
@@ -206,6 +144,10 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
       in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
     }
     in.dew_point_c = r.dew_point_c;
+    if (r.diffuse_horizontal_irradiance == 0.0 || r.diffuse_horizontal_illuminance == 0.0)
+      throw Error(fmt::format("{}:{}: the diffuse horizontal value of this hour is 0 with the sun up for {:.0f} min of it: "
+                              "there is no sky to model (the Perez sky needs E_dh > 0)",
+                              file.path, r.line, 60 * w.sun.up_fraction));
     const auto& i = w.sun.instant;
     p.weather = {{"path", file.path},
                  {"format", weather_format_name(file.format)},
@@ -285,11 +227,12 @@ nlohmann::json perez_json(const PerezHour& h, const PerezSetup& setup) {
 
 int run_illuminance(IlluminanceOptions opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int type = cie_type(opt.sky);
+  const SkyName sky_name = parse_sky_name(opt.sky);
+  const int type = sky_name.cie_type;
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
                                                          : GeometryMode::exact;
-  const bool perez = opt.sky == "perez";
+  const bool perez = sky_name.kind == SkyName::Kind::perez;
   if (!opt.weather.empty() && !perez) throw Error("--weather is read by --sky perez only");
   if (!perez && opt.zenith_luminance_option->count() == 0 && opt.diffuse_horizontal_option->count() == 0)
     throw Error("give the sky's scale: --diffuse-horizontal LUX (its unobstructed horizontal illuminance) or "
@@ -302,13 +245,13 @@ int run_illuminance(IlluminanceOptions opt) {
   if (!opt.files.site.empty()) site = read_site_file(opt.files.site);
   std::optional<PerezSetup> perez_hour_setup;
   if (perez) perez_hour_setup = perez_setup(opt, site);
-  const SunPosition sun = perez ? perez_hour_setup->sun : sun_position(opt, site);
+  const ModelSun sun = perez ? perez_hour_setup->sun : sun_position(opt, site);
 
   DaylightConditions c;
-  c.sky = type > 0 ? DaylightConditions::Sky::cie_general
-          : opt.sky == "uniform" ? DaylightConditions::Sky::uniform
-          : perez                ? DaylightConditions::Sky::perez
-                                 : DaylightConditions::Sky::cie_overcast;
+  c.sky = sky_name.kind == SkyName::Kind::cie_general ? DaylightConditions::Sky::cie_general
+          : sky_name.kind == SkyName::Kind::uniform    ? DaylightConditions::Sky::uniform
+          : sky_name.kind == SkyName::Kind::perez      ? DaylightConditions::Sky::perez
+                                                       : DaylightConditions::Sky::cie_overcast;
   c.sun = sun.direction;
   c.direct_normal = perez ? perez_hour_setup->hour->direct_normal_lux : opt.direct_normal;
   if (perez) c.perez.emplace(perez_hour_setup->hour->sky);
@@ -437,7 +380,9 @@ int run_illuminance(IlluminanceOptions opt) {
     nlohmann::json context = context_json(*model.context, opt.files.context);
     // The sun's bound is 0: with the sun on, the buildings in its beam were kept (load_model).
     const double omega = model.context->left_out_solid_angle_sr;
-    context["illuminance_change_bound_lux"] = {{"sky", omega * c.zenith_luminance * max_relative_luminance(c)}, {"sun", 0.0}};
+    context["illuminance_change_bound_lux"] = {{"sky", omega * c.zenith_luminance * (c.cie     ? c.cie->max_relative_luminance()
+                                                      : c.perez ? c.perez->max_relative_luminance()
+                                                                : 1.0)}, {"sun", 0.0}};
     summary["context"] = context;
   }
   summary["scene"] = scene_json(model.scene, engine);
@@ -507,7 +452,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {
             try {
-              cie_type(s);
+              parse_sky_name(s);
               return "";
             } catch (const Error& e) {
               return e.what();

@@ -78,10 +78,60 @@ void check_polygon(const Polygon& poly) {
   }
 }
 
+// A `!command` line: daylit runs no commands. Say which program it is and what to do instead.
+std::string command_message(std::string_view first, std::string_view rest) {
+  const std::string command = std::string(first.substr(1)) + std::string(rest);  // without the '!'
+  const std::size_t start = command.find_first_not_of(" \t");
+  const std::string program =
+      start == std::string::npos ? std::string() : command.substr(start, command.find_first_of(" \t", start) - start);
+  if (program == "gensky" || program == "gendaylit" || program == "genskyvec")
+    return "the command " + printable("!" + command, 80) + " generates a sky, which daylit does not read: the sky "
+           "comes from --sky; leave this line out";
+  return "daylit does not run commands (" + printable("!" + command, 80) + "): run " +
+         (program.empty() ? std::string("it") : "the Radiance program " + printable(program)) +
+         " yourself, its output to a file (" + printable(command.substr(start == std::string::npos ? 0 : start) + " > out.rad", 80) +
+         "), and give daylit that file";
+}
+
+// What a file that is not a Radiance scene description is, when it can be told from its first
+// bytes; empty otherwise. Octrees and pictures start with a Radiance header ("#?RADIANCE" and a
+// FORMAT line); a Wavefront OBJ has vertex ("v x y z") and face ("f …") lines.
+std::string foreign_file_kind(std::string_view text) {
+  const std::string_view head = text.substr(0, 4096);
+  if (head.substr(0, 10) == "#?RADIANCE") {
+    if (head.find("FORMAT=Radiance_octree") != std::string_view::npos)
+      return "a Radiance octree (the output of oconv): give daylit the .rad files it was made from";
+    if (head.find("FORMAT=32-bit_rle_") != std::string_view::npos) return "a Radiance picture (HDR image), not a scene";
+    return "a binary Radiance file (its header starts with #?RADIANCE), not a scene description";
+  }
+  bool vertex = false, face = false;
+  std::size_t start = 0;
+  for (int lines = 0; lines < 200 && start < head.size(); ++lines) {
+    const std::size_t end = std::min(head.find('\n', start), head.size());
+    const std::string_view line = head.substr(start, end - start);
+    vertex |= line.substr(0, 2) == "v ";
+    face |= line.substr(0, 2) == "f ";
+    start = end + 1;
+  }
+  if (vertex && face)
+    return "a Wavefront OBJ model ('v' and 'f' lines), not a Radiance scene: convert it with Radiance's obj2rad";
+  // Mostly control bytes (not white space): a binary file. A few stray bytes in a text file are
+  // left to the parser, which names their line.
+  const auto control = std::count_if(head.begin(), head.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x20 && u != '\t' && u != '\n' && u != '\r' && u != '\f' && u != '\v';
+  });
+  if (control >= 16 && control * 20 > std::ptrdiff_t(head.size()))
+    return "a binary file (" + std::to_string(control) + " of its first " + std::to_string(head.size()) +
+           " bytes are control characters), not a scene description";
+  return "";
+}
+
 }  // namespace
 
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
+  if (const std::string kind = foreign_file_kind(text); !kind.empty()) throw input_error({name, 1}, "this is " + kind);
   TextScanner scan(text, name);
   // Polygons that had repeated consecutive vertices: counted, and reported once per file.
   long polygons_with_repeats = 0;
@@ -90,9 +140,7 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     const int line = scan.peek_line();
     const SourceLocation where = scan.where(line);
     const Token modifier = scan.next();
-    if (modifier.text.front() == '!')
-      throw input_error(where, "commands (" + printable(std::string(modifier.text) + std::string(scan.rest_of_line()), 80) +
-                                   ") are not supported: run them first and pass their output as a file");
+    if (modifier.text.front() == '!') throw input_error(where, command_message(modifier.text, scan.rest_of_line()));
     const Token type_tok = scan.next();
     const Token id_tok = scan.next();
     if (type_tok.text.empty() || id_tok.text.empty())

@@ -29,6 +29,7 @@
 #include <cstdlib>
 #include <optional>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "geometry/convex_pieces.hpp"
@@ -83,15 +84,18 @@ inline double round_to_double(const LazyExact& x, double = 0) {
 // ---------------------------------------------------------------------------------------------
 // Provenance.
 
-// The line (or, in 3D, the plane through the receiver) an edge lies on.
+// The line (or, in 3D, the plane through the receiver) an edge lies on. `aperture_plane` is where
+// an occluder's plane meets the aperture's: the edge along which an occluder that crosses a
+// luminaire's plane is cut (VisibilityOptions::occluders_beyond = false).
 struct LineId {
-  enum class Kind : std::uint8_t { unknown, segment, hemisphere, horizon, cone };
+  enum class Kind : std::uint8_t { unknown, segment, hemisphere, horizon, cone, aperture_plane };
   Kind kind = Kind::unknown;
-  int cone_edge = -1;                          // cone: index of the aperture edge
+  int index = -1;                              // cone: the aperture edge; aperture_plane: the blocker
   const Vec3* a = nullptr, *b = nullptr;       // segment: its input endpoints
 
   static LineId segment(const Vec3& a, const Vec3& b) { return {Kind::segment, -1, &a, &b}; }
   static LineId cone(int e) { return {Kind::cone, e, nullptr, nullptr}; }
+  static LineId aperture_plane(int blocker) { return {Kind::aperture_plane, blocker, nullptr, nullptr}; }
   static LineId named(Kind k) { return {k, -1, nullptr, nullptr}; }
 };
 
@@ -101,7 +105,10 @@ struct LineId {
 // openings) are recognised.
 inline bool same_line(const LineId& x, const LineId& y) {
   if (x.kind != y.kind || x.kind == LineId::Kind::unknown) return false;
-  if (x.kind == LineId::Kind::cone) return x.cone_edge == y.cone_edge;
+  // Two blockers' cuts are told apart even when the blockers are coplanar (two triangles of one
+  // wall): the signs that identity would give are then exact zeros of planes_share_line and the
+  // determinants, decided in multiprecision instead.
+  if (x.kind == LineId::Kind::cone || x.kind == LineId::Kind::aperture_plane) return x.index == y.index;
   if (x.kind == LineId::Kind::segment) {
     if ((*x.a == *y.a && *x.b == *y.b) || (*x.a == *y.b && *x.b == *y.a)) return true;
     using predicates::point3;
@@ -219,9 +226,11 @@ class ShadowClipper {
   static constexpr bool kSymbolic = !std::is_same_v<FT, double>;
 
   // `horizon`: cut to the directions above p's horizontal plane as well (skies; not luminaires).
-  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, bool horizon = true)
+  // `beyond`: blockers beyond the piece's plane block too (skies); false cuts every blocker to p's
+  // side of that plane first (luminaires: VisibilityOptions::occluders_beyond).
+  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, bool horizon = true, bool beyond = true)
       : p_in_(p), n_in_(n), piece_(piece), sh_(sh), inside_(-sh), k_(piece.drop_axis), i_((k_ + 1) % 3),
-        j_((k_ + 2) % 3), horizon_(horizon) {}
+        j_((k_ + 2) % 3), horizon_(horizon), beyond_(beyond) {}
 
   // Appends the visible part of the piece, as positively oriented loops, to `region`, and with
   // `sources` the source of each of their edges to region.edge_sources.
@@ -237,9 +246,10 @@ class ShadowClipper {
     if (!clip_to_receiver(w)) return;
     for (const auto& x : w) cone_lines_.push_back(x.out);
 
+    blockers_ = &blockers;
     std::vector<Shadow> shadows;
-    for (const ConvexPiece* blocker : blockers)
-      if (auto shadow = shadow_of(*blocker, w)) shadows.push_back(std::move(*shadow));
+    for (std::size_t b = 0; b < blockers.size(); ++b)
+      if (auto shadow = shadow_of(*blockers[b], int(b), w)) shadows.push_back(std::move(*shadow));
 
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
     for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
@@ -345,8 +355,34 @@ class ShadowClipper {
       }
       case LineId::Kind::hemisphere: return {T(n_in_.x), T(n_in_.y), T(n_in_.z)};
       case LineId::Kind::horizon: return {T(0), T(0), T(1)};
-      default: return plane_normal<T>(cone_lines_[L.cone_edge]);
+      case LineId::Kind::aperture_plane: return cut_plane_normal<T>(*(*blockers_)[std::size_t(L.index)]);
+      default: return plane_normal<T>(cone_lines_[L.index]);
     }
+  }
+
+  // Normal of the plane through p that holds the line where the blocker's plane meets the
+  // aperture's. With N_o, N_W their normals and h_o = N_o·(o0 − p), h_W = N_W·(w0 − p) their
+  // offsets from p, every point x of both planes has h_W N_o·(x − p) − h_o N_W·(x − p) = 0, and so
+  // has p: that is the plane. Oriented as plane_normal orients a segment, (q − p) × e with q on the
+  // line and e the way the cut edge runs around the clipped blocker: counter-clockwise about N_o
+  // with the kept side, sh·N_W·(x − w0) ≥ 0, on its left, so e = sh N_W × N_o and
+  // M = sh (h_o N_W − h_W N_o), of degree 5 in the input.
+  template <class T>
+  std::array<T, 3> cut_plane_normal(const ConvexPiece& blocker) const {
+    const auto plane = [&](const ConvexPiece& c, std::array<T, 3>& N, T& h) {
+      const auto& v = c.vertices;
+      const Vec3 &o = v[0], &b = v[c.base_b], &d = v[c.base_c];
+      const std::array<T, 3> e1{T(b.x) - T(o.x), T(b.y) - T(o.y), T(b.z) - T(o.z)};
+      const std::array<T, 3> e2{T(d.x) - T(o.x), T(d.y) - T(o.y), T(d.z) - T(o.z)};
+      N = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+      h = N[0] * (T(o.x) - T(p_in_.x)) + N[1] * (T(o.y) - T(p_in_.y)) + N[2] * (T(o.z) - T(p_in_.z));
+    };
+    std::array<T, 3> No, Nw;
+    T ho, hw;
+    plane(blocker, No, ho);
+    plane(piece_, Nw, hw);
+    const T s{double(sh_)};
+    return {s * (ho * Nw[0] - hw * No[0]), s * (ho * Nw[1] - hw * No[1]), s * (ho * Nw[2] - hw * No[2])};
   }
 
   // Whether the planes through p of three lines share a line (det[M_A, M_B, M_C] = 0, exactly):
@@ -378,9 +414,11 @@ class ShadowClipper {
       // x where an occluder edge A meets cone plane B: x − p = (a − p) + s (b − a) with
       // M_B·(x − p) = 0, so by the Binet–Cauchy identity M_E·(x − p) = det[M_E, M_B, M_A] / (M_B·(b − a)),
       // a sign decided exactly on the input (M_E oriented positive inside, M_A = (a − p) × (b − p)).
+      // The same holds for B the blocker's cut along the aperture's plane (a plane through p too).
       const LineId* A = x_in.kind == LineId::Kind::segment ? &x_in : (x.out.kind == LineId::Kind::segment ? &x.out : nullptr);
-      const LineId* B = x_in.kind == LineId::Kind::cone ? &x_in : (x.out.kind == LineId::Kind::cone ? &x.out : nullptr);
-      if (A && B && B->cone_edge != e) {
+      const auto plane_through_p = [](const LineId& L) { return L.kind == LineId::Kind::cone || L.kind == LineId::Kind::aperture_plane; };
+      const LineId* B = plane_through_p(x_in) ? &x_in : (plane_through_p(x.out) ? &x.out : nullptr);
+      if (A && B && !(B->kind == LineId::Kind::cone && B->index == e)) {
         const int det = predicates::filtered_sign([&](auto zero) {
           using T = decltype(zero);
           auto E = plane_normal<T>(edge);
@@ -435,15 +473,34 @@ class ShadowClipper {
     }
   }
 
-  // The blocker clipped to the cone over w and projected onto the aperture's plane, counter-
-  // clockwise; nothing if it has no area there.
-  std::optional<Shadow> shadow_of(const ConvexPiece& blocker, const std::vector<V3>& w) const {
+  // The blocker (number `index` of run()'s blockers) clipped to the cone over w and projected onto
+  // the aperture's plane, counter-clockwise; nothing if it has no area there.
+  std::optional<Shadow> shadow_of(const ConvexPiece& blocker, int index, const std::vector<V3>& w) const {
     const auto& ov = blocker.vertices;
+    const auto& wv = piece_.vertices;
     if (Signs::orient3(ov[0], ov[blocker.base_b], ov[blocker.base_c], p_in_) == 0) return std::nullopt;  // edge-on
     std::vector<V3> o;
     for (std::size_t i = 0; i < ov.size(); ++i) {
       const Vec r = relative(ov[i]);
       o.push_back({{r[0], r[1], r[2]}, &ov[i], LineId::segment(ov[i], ov[(i + 1) % ov.size()])});
+    }
+    const auto rebuild = [&](V3& x, const LineId& along, const LineId& cut) { rebuild_on(blocker, x, along, cut); };
+    // A luminaire is hidden only by what lies between it and the receiver: the blocker's part on
+    // p's side of the aperture's plane, sh·N_W·(x − w0) ≥ 0, clipped before the cone so that every
+    // sign here is an exact predicate on an input vertex. The new vertices lie on the line
+    // aperture_plane(index), rebuilt from it (rebuild_on) as those on the cone's planes are, and
+    // the cone's clips decide their signs by the same Binet–Cauchy identity (cone_side).
+    if (!beyond_) {
+      const FT side{double(sh_)};
+      SignedValues<FT> f;
+      for (const V3& x : o) {
+        // The float path too takes the sign from the input (FloatSigns: in double), as survives()
+        // culled by it: a vertex on the plane then stays on it rather than a rounding off it.
+        FT value = side * dot(N_, sub(x, w0_));
+        f.push(std::move(value), sh_ * Signs::normal_dot_diff(wv[0], wv[piece_.base_b], wv[piece_.base_c], *x.input, wv[0]));
+      }
+      if (!f.any_positive) return std::nullopt;
+      if (f.any_negative) o = keep_side(o, f, +1, LineId::aperture_plane(index), rebuild);
     }
     for (std::size_t e = 0; e < w.size(); ++e) {
       Vec m = cross(w[e].c3(), w[(e + 1) % w.size()].c3());
@@ -455,16 +512,20 @@ class ShadowClipper {
         f.push(std::move(value), s);
       }
       if (!f.any_positive) return std::nullopt;
-      if (f.any_negative)
-        o = keep_side(o, f, +1, LineId::cone(int(e)), [&](V3& x, const LineId& along, const LineId& cut) { rebuild_on(blocker, x, along, cut); });
+      if (f.any_negative) o = keep_side(o, f, +1, LineId::cone(int(e)), rebuild);
     }
-    const auto& wv = piece_.vertices;
     const FT minus_h = dot(N_, w0_.c3());
     std::vector<V2> shadow;
-    for (const V3& x : o) {
+    for (std::size_t q = 0; q < o.size(); ++q) {
+      const V3& x = o[q];
       // An input vertex in the aperture's plane is its own projection.
       if (x.input && Signs::orient3(wv[0], wv[piece_.base_b], wv[piece_.base_c], *x.input) == 0) {
         shadow.push_back({x[i_], x[j_], x.input, true, x.out});
+        continue;
+      }
+      // So is a vertex of the cut along it (t = 1 exactly, and no wider interval for dividing by it).
+      if (x.out.kind == LineId::Kind::aperture_plane || o[(q + o.size() - 1) % o.size()].out.kind == LineId::Kind::aperture_plane) {
+        shadow.push_back({x[i_], x[j_], nullptr, false, x.out});
         continue;
       }
       const FT t = minus_h / dot(N_, x.c3());
@@ -484,12 +545,14 @@ class ShadowClipper {
   // V − p (the projection of input vertex V) or along M1 × M2 (where the lines of its edges
   // meet) has orient2(a, b, x) = −sh · μ · sign(M_L · (x − p)), μ = −1 when the shadow's edge runs
   // against L.a → L.b; and x − p = −h (M1 × M2) / (N · (M1 × M2)) on the aperture's plane.
+  // The same holds for L a blocker's cut along the aperture's plane, whose M_L cut_plane_normal
+  // orients as the occluder's own edges are.
   int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, bool reversed,
                 const FT& value) const {
     return decide(value, [&]() -> std::optional<int> {
       if (same_line(x.out, L) || same_line(x_in, L)) return 0;
       if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
-      if (L.kind != LineId::Kind::segment) return std::nullopt;
+      if (L.kind != LineId::Kind::segment && L.kind != LineId::Kind::aperture_plane) return std::nullopt;
       const int mu = reversed ? -1 : 1;
       if (x.at) {
         // x − p = t (V − p), t = −h / (N·(V − p)): positive for the projection of a vertex of an
@@ -499,7 +562,13 @@ class ShadowClipper {
         const auto& pv = piece_.vertices;
         const int t_sign = -sh_ * Signs::normal_dot_diff(pv[0], pv[piece_.base_b], pv[piece_.base_c], *x.at, p_in_);
         if (t_sign == 0) return std::nullopt;
-        return -sh_ * mu * t_sign * Signs::orient3(p_in_, *L.a, *L.b, *x.at);
+        if (L.kind == LineId::Kind::segment) return -sh_ * mu * t_sign * Signs::orient3(p_in_, *L.a, *L.b, *x.at);
+        const Vec3& v = *x.at;
+        return -sh_ * mu * t_sign * predicates::filtered_sign([&](auto zero) {
+          using T = decltype(zero);
+          const auto m = plane_normal<T>(L);
+          return m[0] * (T(v.x) - T(p_in_.x)) + m[1] * (T(v.y) - T(p_in_.y)) + m[2] * (T(v.z) - T(p_in_.z));
+        });
       }
       if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
         return std::nullopt;
@@ -598,12 +667,16 @@ class ShadowClipper {
   // piece's own vertices, else an occluder's; a cone line stands for the aperture edge it is on.
   EdgeSourceLoop edge_sources(const std::vector<V2>& P) const {
     const auto source = [&](LineId L) {
-      if (L.kind == LineId::Kind::cone) L = cone_lines_[std::size_t(L.cone_edge)];
+      if (L.kind == LineId::Kind::cone) L = cone_lines_[std::size_t(L.index)];
       switch (L.kind) {
         case LineId::Kind::segment: {
           const auto& wv = piece_.vertices;
           const bool own = L.a >= wv.data() && L.a < wv.data() + wv.size();
           return EdgeSource{own ? EdgeSource::Kind::aperture : EdgeSource::Kind::occluder, *L.a, *L.b};
+        }
+        case LineId::Kind::aperture_plane: {
+          const auto [a, b] = cut_points(*(*blockers_)[std::size_t(L.index)]);
+          return EdgeSource{EdgeSource::Kind::occluder, a, b};
         }
         case LineId::Kind::hemisphere: return EdgeSource{EdgeSource::Kind::receiver_plane};
         case LineId::Kind::horizon: return EdgeSource{EdgeSource::Kind::horizon};
@@ -615,6 +688,38 @@ class ShadowClipper {
     // Reversed with the loop (sh > 0): edge i of the reversed loop is edge m − 2 − i of P.
     for (std::size_t q = 0; q < m; ++q) out[q] = source(P[sh_ > 0 ? (2 * m - 2 - q) % m : q].out);
     return out;
+  }
+
+  // Two points of the line where the blocker's plane meets the aperture's, in model coordinates:
+  // the line has no input points, so the two points where the blocker's boundary crosses the
+  // plane (a convex piece that crosses it has two), in rationals from the input and rounded once,
+  // whatever the mode, so that the sources agree across modes. A blocker edge on that line is
+  // kept as a segment and never comes here.
+  std::pair<Vec3, Vec3> cut_points(const ConvexPiece& blocker) const {
+    using Q = CGAL::Gmpq;
+    const auto& wv = piece_.vertices;
+    const auto& ov = blocker.vertices;
+    const auto q3 = [](const Vec3& v) { return std::array<Q, 3>{Q(v.x), Q(v.y), Q(v.z)}; };
+    const auto w0 = q3(wv[0]), wb = q3(wv[piece_.base_b]), wc = q3(wv[piece_.base_c]);
+    const std::array<Q, 3> e1{wb[0] - w0[0], wb[1] - w0[1], wb[2] - w0[2]}, e2{wc[0] - w0[0], wc[1] - w0[1], wc[2] - w0[2]};
+    const std::array<Q, 3> N{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    std::vector<std::array<Q, 3>> v;
+    std::vector<Q> f;
+    for (const Vec3& x : ov) {
+      v.push_back(q3(x));
+      f.push_back(N[0] * (v.back()[0] - w0[0]) + N[1] * (v.back()[1] - w0[1]) + N[2] * (v.back()[2] - w0[2]));
+    }
+    std::vector<Vec3> points;
+    const auto round = [](const std::array<Q, 3>& x) { return Vec3{round_rational(x[0]), round_rational(x[1]), round_rational(x[2])}; };
+    for (std::size_t i = 0; i < v.size() && points.size() < 2; ++i) {
+      const std::size_t j = (i + 1) % v.size();
+      if (CGAL::sign(f[i]) == CGAL::ZERO) points.push_back(ov[i]);
+      else if (CGAL::sign(f[i]) * CGAL::sign(f[j]) < 0) {
+        const Q t = f[i] / (f[i] - f[j]);
+        points.push_back(round({v[i][0] + (v[j][0] - v[i][0]) * t, v[i][1] + (v[j][1] - v[i][1]) * t, v[i][2] + (v[j][2] - v[i][2]) * t}));
+      }
+    }
+    return {points.at(0), points.at(1)};
   }
 
   // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
@@ -646,10 +751,11 @@ class ShadowClipper {
   Vec3 p_in_, n_in_;
   const ConvexPiece& piece_;
   int sh_, inside_, k_, i_, j_;
-  bool horizon_;
-    V3 w0_;
+  bool horizon_, beyond_;
+  V3 w0_;
   Vec N_;
   std::vector<LineId> cone_lines_;  // the line of each edge of the clipped aperture piece
+  const std::vector<const ConvexPiece*>* blockers_ = nullptr;  // what LineId::aperture_plane indexes
 };
 
 }  // namespace daylit::clipping

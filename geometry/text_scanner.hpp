@@ -23,8 +23,22 @@ class TextScanner {
   TextScanner(std::string_view text, std::string file) : text_(text), file_(std::move(file)) {}
 
   // Next token, or an empty token at the end of the text. Comments run from '#' to end of line.
+  // A word that starts with a double or single quote runs to the matching quote, white space and
+  // '#' included, as Radiance's fgetword reads it ("porsche #1"); the token is what lies between
+  // the quotes. An unterminated or empty quoted word is an error naming its line.
   Token next() {
     skip_blank();
+    if (pos_ < text_.size() && (text_[pos_] == '"' || text_[pos_] == '\'')) {
+      const char quote = text_[pos_];
+      const int line = line_;
+      const std::size_t begin = ++pos_;
+      while (pos_ < text_.size() && text_[pos_] != quote) line_ += text_[pos_++] == '\n';
+      if (pos_ >= text_.size()) throw input_error(where(line), std::string("quoted word without its closing ") + quote);
+      const std::string_view word = text_.substr(begin, pos_ - begin);
+      ++pos_;
+      if (word.empty()) throw input_error(where(line), "empty quoted word");
+      return {word, line};
+    }
     const std::size_t begin = pos_;
     while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
     return {text_.substr(begin, pos_ - begin), line_};

@@ -148,9 +148,12 @@ struct Box {
 
 // A plane through the receiver, m·(x − p) ≥ 0 on the side that may matter, known in double only
 // approximately; `scale` bounds |m| before cancellation so that the margin covers its rounding.
+// A plane off the receiver (the aperture's own plane) is m·(x − p) + offset ≥ 0, offset = m·(q − p)
+// rounded for a point q of it, and `distance` = |q − p| widens the margin to cover that rounding.
 struct CullPlane {
   Vec3 m;
   double scale;
+  double offset = 0, distance = 0;
 };
 
 // True if the box lies certainly on the negative side of the plane. The margin (1e-10 of the
@@ -159,8 +162,8 @@ struct CullPlane {
 bool box_outside(const Box& box, const CullPlane& plane, const Vec3& p) {
   const Vec3 c = box.center() - p, h = box.half();
   const double reach = dot(plane.m, c) + std::abs(plane.m.x) * h.x + std::abs(plane.m.y) * h.y + std::abs(plane.m.z) * h.z;
-  const double margin = 1e-10 * plane.scale * (norm(c) + norm(h));
-  return reach < -margin;
+  const double margin = 1e-10 * plane.scale * (norm(c) + norm(h) + plane.distance);
+  return reach + plane.offset < -margin;
 }
 
 struct BvhNode {
@@ -206,10 +209,17 @@ struct VisibilityEngine::Impl {
   }
 
   template <class Signs>
-  bool survives(const ConvexPiece& o, const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon) const {
+  bool survives(const ConvexPiece& o, const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon,
+                bool beyond) const {
     const auto& ov = o.vertices;
     const auto& wv = w.vertices;
     const auto all = [&](auto&& pred) { return std::all_of(ov.begin(), ov.end(), pred); };
+    // A luminaire's occluders must lie between it and the receiver: a piece with no vertex strictly
+    // on p's side of the aperture's plane (sh = sign N_W·(p − w0)) hides nothing. Tested first:
+    // seen from a surface of a model, the rest of the building behind that surface is all of this
+    // kind, and the box test in collect() lets through only the pieces that touch the plane.
+    if (!beyond && all([&](const Vec3& v) { return sh * Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, wv[0]) <= 0; }))
+      return false;
     if (horizon && all([&](const Vec3& v) { return v.z <= p.z; })) return false;
     if (all([&](const Vec3& v) { return Signs::dot_diff(n, v, p) <= 0; })) return false;
     // Points of the cone have N·(x − p) of the sign of −h.
@@ -224,23 +234,32 @@ struct VisibilityEngine::Impl {
     // Rays p + t(w − p), t > 0, never reach the occluder's plane from p's side when each moves
     // away from it or parallel to it: sign(N_o·(w − p)) is that of N_o·(p − o0) or zero. (The
     // rays go on beyond the aperture, so the aperture lying on p's side is not enough.) A plane
-    // through p itself casts a shadow of zero area.
+    // through p itself casts a shadow of zero area. Without the occluders beyond, the segments
+    // (p, w) are what must cross it: the aperture on p's side of the plane, or on it, is enough.
     const Vec3 &o0 = ov[0], &ob = ov[o.base_b], &oc = ov[o.base_c];
     const int sp = Signs::orient3(o0, ob, oc, p);
     if (sp == 0) return false;
-    return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, p) >= 0; });
+    const Vec3& from = beyond ? p : o0;
+    return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, from) >= 0; });
   }
 
   template <class Signs>
-  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, bool horizon, std::size_t excluded,
+  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
                std::vector<const ConvexPiece*>& out, VisibilityCounters& counters) const {
     if (nodes.empty()) return;
+    const bool horizon = options.clip_to_horizon, beyond = options.occluders_beyond;
     // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
     std::vector<CullPlane> planes;
-    planes.push_back({n, 1});
-    if (horizon) planes.push_back({{0, 0, 1}, 1});
     const auto& wv = w.vertices;
     const Vec3 eb = wv[w.base_b] - wv[0], ec = wv[w.base_c] - wv[0];
+    // Without the occluders beyond: p's side of the aperture's plane, sh·N_W·(x − w0) ≥ 0, first,
+    // so that whole BVH subtrees behind the luminaire's surface are dropped at once.
+    if (!beyond) {
+      const Vec3 m = double(sh) * cross(eb, ec);
+      planes.push_back({m, norm(eb) * norm(ec), dot(m, p - wv[0]), norm(p - wv[0])});
+    }
+    planes.push_back({n, 1});
+    if (horizon) planes.push_back({{0, 0, 1}, 1});
     planes.push_back({double(-sh) * cross(eb, ec), norm(eb) * norm(ec)});
     for (std::size_t e = 0; e < wv.size(); ++e) {
       const Vec3 a = wv[e] - p, b = wv[(e + 1) % wv.size()] - p;
@@ -263,13 +282,13 @@ struct VisibilityEngine::Impl {
       }
       for (int i = node.first; i < node.first + node.count; ++i) {
         const ConvexPiece& o = occluders[order[i]];
-        if (o.source == excluded) continue;
+        if (o.source == options.excluded_occluder) continue;
         if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(occluder_boxes[order[i]], pl, p); })) {
           ++counters.occluders_box_culled;
           continue;
         }
         ++counters.occluders_tested;
-        if (survives<Signs>(o, p, n, w, sh, horizon)) out.push_back(&o);
+        if (survives<Signs>(o, p, n, w, sh, horizon, beyond)) out.push_back(&o);
       }
     }
   }
@@ -293,7 +312,7 @@ struct VisibilityEngine::Impl {
       return;
     }
     std::vector<const ConvexPiece*> blockers;
-    collect<Signs>(p, n, w, sh, options.clip_to_horizon, options.excluded_occluder, blockers, counters);
+    collect<Signs>(p, n, w, sh, options, blockers, counters);
     const bool reference = mode == GeometryMode::rational;
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
@@ -304,14 +323,14 @@ struct VisibilityEngine::Impl {
       blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
       counters.occluders_clipped += blockers.size();
       if constexpr (std::is_same_v<FT, double>) {
-        clipping::ShadowClipper<double, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, region, options.edge_sources);
+        clipping::ShadowClipper<double, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
       } else {
         SphericalRegion certified;
         bool certain = !reference;
         if (certain) {
           try {
             CGAL::Protect_FPU_rounding<true> upward;
-            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, certified, options.edge_sources);
+            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, certified, options.edge_sources);
           } catch (const CGAL::Uncertain_conversion_exception&) {
             certain = false;
           }
@@ -321,7 +340,7 @@ struct VisibilityEngine::Impl {
           for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
         } else {
           ++counters.pairs_rational;
-          clipping::ShadowClipper<FT, Signs>(p, n, w, sh, options.clip_to_horizon).run(blockers, region, options.edge_sources);
+          clipping::ShadowClipper<FT, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
         }
       }
     }

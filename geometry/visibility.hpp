@@ -56,6 +56,14 @@ struct VisibilityOptions {
   // that a surface does not hide itself. kNoOccluder: every occluder blocks.
   static constexpr std::size_t kNoOccluder = std::size_t(-1);
   std::size_t excluded_occluder = kNoOccluder;
+  // Whether occluders beyond the aperture's plane (seen from the receiver) block: true for skies,
+  // whose light comes from beyond the window; false for luminaires, which nothing behind them can
+  // hide. With false the region is exactly the directions to points x of the aperture whose open
+  // segment (p, x) meets no occluder: occluder pieces on the far side of the aperture piece's
+  // plane, or touching it from there, are culled, and pieces that cross it are clipped to the
+  // receiver's side of it before they are projected (the new vertices lie on that input plane
+  // and are certified as those on the cone's planes are).
+  bool occluders_beyond = true;
 };
 
 class VisibilityEngine {
@@ -78,9 +86,9 @@ class VisibilityEngine {
   // loops (a partition of the region); empty when nothing is visible. Thread-safe.
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                  VisibilityCounters& counters) const;
-  // The same with options: without the horizon cut (the region of a luminaire), and with the
-  // source of every edge. Edge sources are the same in all three geometry modes (the
-  // combinatorics are exact in all but degenerate float cases).
+  // The same with options: without the horizon cut and without the occluders beyond the aperture
+  // (the region of a luminaire), and with the source of every edge. Edge sources are the same in
+  // all three geometry modes (the combinatorics are exact in all but degenerate float cases).
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
                                  const VisibilityOptions& options) const;
 

@@ -7,34 +7,18 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "illumination/precision_escalation.hpp"
 #include "illumination/real_vector.hpp"
 
 namespace daylit {
 
 namespace {
 
+using real::condition;
 using real::unit_roundoff;
-#ifdef DAYLIT_HAS_FLOAT128
-using real::quad;
-#endif
 
-// A result with the sum of the absolute values of the terms that made it, to measure cancellation.
 template <class R>
-struct Sum {
-  R value = 0, magnitude = 0;
-  void add(R term, R term_magnitude) {
-    value += term;
-    magnitude += term_magnitude;
-  }
-};
-
-// κ = Σ|terms| / |result| (1 for an exact zero made of zeros; huge for a zero made of non-zeros).
-template <class R>
-R condition(const Sum<R>& s) {
-  if (s.magnitude == 0) return R(1);
-  if (s.value == 0) return R(1e300);
-  return std::max(R(1), s.magnitude / real::abs(s.value));
-}
+using Sum = real::Tracked<R>;
 
 // ---- The cap of half-angle s ≤ π/2 cut by the horizon: arc integrals and Stokes sums ----------
 //
@@ -311,22 +295,18 @@ Estimate<R> clipped_cap_moment(R omega, R sigma, int n, bool times_cap_axis) {
   return {best.value, error};
 }
 
-struct Evaluation {
-  double value;
-  double relative_error;
-};
+using Evaluation = Escalated<double>;
 
 // Long double first; __float128 when the estimate exceeds 4e−16 (a few ulps of the double result).
 template <class Angle>
 Evaluation evaluate(Angle&& omega_in, double sigma, int n, bool times_cap_axis) {
-  const auto l = clipped_cap_moment<long double>(omega_in((long double)0), sigma, n, times_cap_axis);
-#ifdef DAYLIT_HAS_FLOAT128
-  if (l.relative_error > 4e-16L) {
-    const auto q = clipped_cap_moment<quad>(omega_in(quad(0)), quad(sigma), n, times_cap_axis);
-    return {double(q.value), double(q.relative_error)};
-  }
-#endif
-  return {double(l.value), double(l.relative_error)};
+  return escalate(
+      [&](auto zero) {
+        using R = decltype(zero);
+        const auto e = clipped_cap_moment<R>(omega_in(zero), R(sigma), n, times_cap_axis);
+        return Attempt<double>{double(e.value), double(e.relative_error)};
+      },
+      4e-16, long_double_precision);
 }
 
 Evaluation clipped_cap(double omega, double sigma, int n, bool times_cap_axis) {

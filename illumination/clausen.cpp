@@ -72,7 +72,7 @@ double clausen(double x) { return gsl_sf_clausen(x); }
 
 long double clausen(long double x) { return clausen_series(x); }
 
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 real::quad clausen(real::quad x) { return clausen_series(x); }
 #endif
 
@@ -96,7 +96,7 @@ double chen_arvo_lambda(double alpha, double beta, ClausenMethod method) {
     if (beta == 0) return 0;
     return -beta - std::log(std::cos(beta)) / std::tan(beta);
   }
-  return lambda_bracket<double>(alpha, kappa, std::sin(beta), std::cos(beta), nullptr, method) / (4 * kappa);
+  return lambda_bracket<double>(alpha, kappa, std::sin(beta), std::cos(beta), method) / (4 * kappa);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "illumination/real_vector.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -22,7 +23,7 @@ double clausen(double x);
 // (Lewin 1958, eq. 4.21; the ratio of terms is ≤ 1/4 there), with ζ(2n) from Euler–Maclaurin.
 // Absolute error a few units of R's roundoff times max(|x log|x||, 1).
 long double clausen(long double x);
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 real::quad clausen(real::quad x);
 #endif
 
@@ -44,14 +45,16 @@ enum class ClausenMethod { gsl, grosjean };
 // substituted, which stays defined at α = 1 (κ = 0), where eq. 36 reads 0/0 and the bracket is 0
 // (Λ(1, β) is finite, eq. 35). η lies in [0, π] for β ≥ 0 (eq. 121); β < 0 by oddness (eq. 38).
 // The product with κ is what the edge terms need (they carry w·m = ±κ), and it spares the
-// division by κ that makes Λ itself lose digits near α = 1. `magnitude` receives the sum of the
+// division by κ that makes Λ itself lose digits near α = 1. The tracked form carries the sum of the
 // absolute values of the bracket's terms and of its Cl2's error scale (for cancellation estimates).
 template <class R>
-R lambda_bracket(R alpha, R kappa, R sin_beta, R cos_beta, R* magnitude = nullptr,
-                 ClausenMethod method = ClausenMethod::gsl) {
-  if (sin_beta < 0) return -lambda_bracket<R>(alpha, kappa, -sin_beta, cos_beta, magnitude, method);
-  if (magnitude) *magnitude = 0;
-  if (sin_beta == 0) return R(0);
+real::Tracked<R> lambda_bracket_tracked(R alpha, R kappa, R sin_beta, R cos_beta,
+                                        ClausenMethod method = ClausenMethod::gsl) {
+  if (sin_beta < 0) {
+    const real::Tracked<R> b = lambda_bracket_tracked<R>(alpha, kappa, -sin_beta, cos_beta, method);
+    return {-b.value, b.magnitude};
+  }
+  if (sin_beta == 0) return {};
   const R mu = real::atan2(sin_beta, kappa * cos_beta);
   const R eta = real::atan2(sin_beta * cos_beta * (1 + kappa), kappa * cos_beta * cos_beta - sin_beta * sin_beta);
   const R log_gamma = 2 * real::log(alpha) - 2 * real::log1p(kappa);
@@ -63,8 +66,13 @@ R lambda_bracket(R alpha, R kappa, R sin_beta, R cos_beta, R* magnitude = nullpt
   const R t1 = 2 * cl2(2 * mu), t2 = cl2(4 * mu - 2 * eta), t3 = cl2(2 * eta), t4 = 2 * (eta - mu) * log_gamma;
   // Each Cl2 is good to a few units of roundoff of max(|Cl2|, 1) (GSL, and our series), not of
   // |Cl2|: hence the 4 (= 2 + 1 + 1, the weights of the three terms) beside their values.
-  if (magnitude) *magnitude = real::abs(t1) + real::abs(t2) + real::abs(t3) + real::abs(t4) + 4;
-  return t1 - t2 - t3 + t4;
+  return {t1 - t2 - t3 + t4, real::abs(t1) + real::abs(t2) + real::abs(t3) + real::abs(t4) + 4};
+}
+
+// The bracket alone.
+template <class R>
+R lambda_bracket(R alpha, R kappa, R sin_beta, R cos_beta, ClausenMethod method = ClausenMethod::gsl) {
+  return lambda_bracket_tracked<R>(alpha, kappa, sin_beta, cos_beta, method).value;
 }
 
 // Λ(α, β) itself for 0 < α ≤ 1, |β| ≤ π/2: eq. 35 at α = 1, eq. 36 (through lambda_bracket)

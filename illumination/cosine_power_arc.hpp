@@ -3,9 +3,11 @@
 // at every order: the building block of every moment in moments.hpp (DESIGN.md §7).
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "illumination/arc_edge.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -103,13 +105,13 @@ class CosinePowerArc {
   }
 
   // The tail Σ_{j ≥ 0} G_{k0 + 2j} to a few ulp relative (the series converges like (c·r)^{2j}),
-  // and the sum of the absolute values of its terms. Fails (returns false) where the series
-  // converges too slowly to sum: the arc passes within ~1e-3 rad of ±w.
-  bool tail(int k0, R& sum, R& magnitude) const {
-    sum = magnitude = 0;
+  // with the sum of the absolute values of its terms (tracked_sum.hpp). Fails (nullopt) where the
+  // series converges too slowly to sum: the arc passes within ~1e-3 rad of ±w.
+  std::optional<real::Tracked<R>> tail(int k0) const {
+    real::Tracked<R> sum;
     if (!(c_ > 0)) {
-      if (k0 == 0) sum = magnitude = theta_;
-      return true;
+      if (k0 == 0) sum.add(theta_);
+      return sum;
     }
     const double cr = double(c_) * r_;
     const double log_u = std::log(double(real::unit_roundoff<R>()));
@@ -123,29 +125,27 @@ class CosinePowerArc {
         R ck = real::powi(c_, k0);
         const R c2 = c_ * c_;
         for (const R& f : F) {
-          sum += ck * f;
-          magnitude += real::abs(ck * f);
+          sum.add(ck * f);
           ck *= c2;
         }
-        return true;
+        return sum;
       }
     }
-    if (!(cr < 1)) return false;
+    if (!(cr < 1)) return std::nullopt;
     // Upward, stable here: stop once the rest, bounded by c^k ∫|cos|^k · (c r)²/(1 − (c r)²)
     // since |cos s| ≤ r on the arc, is below u of the sum.
     const R c2 = c_ * c_;
     const R ratio = R(cr * cr / (1 - cr * cr));
     R ck = real::powi(c_, k0);
     auto add_term = [&](long k, R Fk) {  // true once converged
-      sum += ck * Fk;
-      magnitude += real::abs(ck * Fk);
+      sum.add(ck * Fk);
       const R abs_integral = (k % 2 == 0 || !cos_changes_sign_) ? real::abs(Fk) : theta_;
       const R bound = ck * abs_integral * ratio;
       ck *= c2;
-      return bound <= real::unit_roundoff<R>() * real::abs(sum);
+      return bound <= real::unit_roundoff<R>() * real::abs(sum.value);
     };
-    if (k0 == 0 && add_term(0, theta_)) return true;
-    if (k0 == 1 && add_term(1, dsin_)) return true;
+    if (k0 == 0 && add_term(0, theta_)) return sum;
+    if (k0 == 1 && add_term(1, dsin_)) return sum;
     const long last = 21L * k0 + 200000;  // ~1e-3 rad from ±w: give up
     R F_prev = theta_, F_cur = dsin_;    // F_{k−2}, F_{k−1} for k = 2
     R D = 0, cos0_j = 1;
@@ -156,9 +156,9 @@ class CosinePowerArc {
       const R F_next = (E + R(k - 1) * F_prev) / R(k);
       F_prev = F_cur;
       F_cur = F_next;
-      if (k >= k0 && (k - k0) % 2 == 0 && add_term(k, F_next)) return true;
+      if (k >= k0 && (k - k0) % 2 == 0 && add_term(k, F_next)) return sum;
     }
-    return false;
+    return std::nullopt;
   }
 
   // Σ G_i over i = first, first + 2, …, ≤ last by the upward recurrence, stopped once the rest is

@@ -18,15 +18,15 @@ FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> fa
 
   // The kernels normalise the axes themselves, in the precision they compute in, and raise |a|
   // to the power from |a|² in long double (moments.cpp).
-  double value = 0;
+  Escalated<double> m{};
   if (factors.empty()) {
     return {solid_angle(region), 1e-15};
   } else if (factors.size() == 1) {
-    value = axial_moment(region, factors[0].axis, factors[0].power);
+    m = axial_moment_with_accuracy(region, factors[0].axis, factors[0].power);
   } else if (factors.size() == 2 && factors[1].power == 1) {
-    value = double_axis_moment(region, factors[0].axis, factors[1].axis, factors[0].power);
+    m = double_axis_moment_with_accuracy(region, factors[0].axis, factors[1].axis, factors[0].power);
   } else if (factors.size() == 3 && factors[1].power == 1 && factors[2].power == 1) {
-    value = triple_axis_moment(region, factors[0].axis, factors[1].axis, factors[2].axis, factors[0].power);
+    m = triple_axis_moment_with_accuracy(region, factors[0].axis, factors[1].axis, factors[2].axis, factors[0].power);
   } else {
     std::string pattern;
     for (const Factor& f : factors) {
@@ -35,8 +35,8 @@ FactorMoment factor_moment(const SphericalRegion& region, std::vector<Factor> fa
     }
     throw Error("factor pattern (" + pattern + ") is not supported; supported: (), (n), (n,1), (n,1,1)");
   }
-  if (!std::isfinite(value)) throw Error("the factors' lengths raised to their powers overflow double");
-  return {value, last_moment_accuracy().relative_error};
+  if (!std::isfinite(m.value)) throw Error("the factors' lengths raised to their powers overflow double");
+  return {m.value, m.relative_error};
 }
 
 }  // namespace daylit

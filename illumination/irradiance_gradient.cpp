@@ -8,6 +8,9 @@
 
 #include "geometry/error.hpp"
 #include "illumination/arc_edge.hpp"
+#include "illumination/gauss_kronrod.hpp"
+#include "illumination/precision_escalation.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -66,26 +69,24 @@ void times_linear(TrigPolynomial<R>& P, const Complex<R>& g) {
 // the chord): no trigonometric call, and short arcs keep their relative precision; the error grows
 // by an ulp per order.
 template <class R>
-void integrate(const TrigPolynomial<R>& P, const ArcEdge<R>& arc, R& value, R& magnitude) {
-  value = P.c[0].re * arc.length;
-  magnitude = real::abs(value);
+real::Tracked<R> integrate(const TrigPolynomial<R>& P, const ArcEdge<R>& arc) {
+  real::Tracked<R> sum;
+  sum.add(P.c[0].re * arc.length);
   const R s1 = arc.sin_length, c1 = -arc.one_minus_cos;
   R s = s1, c = c1;  // sin kθ, cos kθ − 1 for k = 1
   for (std::size_t k = 1; k < P.size; ++k) {
     const R term = 2 * (P.c[k].re * s + P.c[k].im * c) / R(k);
-    value += term;
-    magnitude += real::abs(term);
+    sum.add(term);
     const R s_next = s + s1 + s * c1 + c * s1;
     c = c + c1 + c * c1 - s * s1;
     s = s_next;
   }
+  return sum;
 }
 
+// A vector sum with the magnitude of its terms (tracked_sum.hpp).
 template <class R>
-struct VectorSum {
-  V3<R> value{};
-  R magnitude = 0;
-};
+using VectorSum = real::Tracked<R, V3<R>>;
 
 // The line of a moving edge seen from the receiver: μ, the unit normal of its plane through p
 // (sign left to the caller), and w with w·u = 1/r, r the distance along u to the line.
@@ -157,24 +158,21 @@ VectorSum<R> directional_gradient_sum(const SphericalRegion& region, const Vec3&
     for (std::size_t k = 0; k < T.size; ++k) P.c[k] = P.c[k] + Complex<R>{R(L.alpha) * T.c[k].re, R(L.alpha) * T.c[k].im};
     times_linear(P, linear_form(n, A, S));
     times_linear(P, linear_form(w, A, S));
-    R value, magnitude;
-    integrate(P, arc, value, magnitude);
-    sum.value = sum.value + value * mu;
+    const real::Tracked<R> integral = integrate(P, arc);
     // ∫|integrand| ≤ θ · bound · |n| · |w|, and at least the magnitude of the terms summed.
-    sum.magnitude += std::max(magnitude, arc.length * bound * real::norm(n) * real::norm(w));
+    sum.add(integral.value * mu, std::max(integral.magnitude, arc.length * bound * real::norm(n) * real::norm(w)));
   });
   return sum;
 }
 
+// The gradient rounded to double, with the estimate 10·u·κ of its relative error (κ of the
+// vector sum, tracked_sum.hpp).
 template <class R>
-IrradianceGradient finish(const VectorSum<R>& sum, int precision) {
-  const R size = real::norm(sum.value);
-  const R estimate = R(10) * real::unit_roundoff<R>() * sum.magnitude;
-  IrradianceGradient g;
-  g.value = {double(sum.value.x), double(sum.value.y), double(sum.value.z)};
-  g.relative_error = size > 0 ? double(estimate / size) : (sum.magnitude > 0 ? HUGE_VAL : 0.0);
-  g.precision = precision;
-  return g;
+Attempt<Vec3> finish(const VectorSum<R>& sum) {
+  const R kappa = real::condition(sum);
+  return {{double(sum.value.x), double(sum.value.y), double(sum.value.z)},
+          double(R(10) * real::unit_roundoff<R>() * kappa),
+          double(kappa)};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -229,74 +227,24 @@ R evaluate(const ExitancePolynomial& M, const V3<R>& x) {
   return sum;
 }
 
-// Gauss–Kronrod 7/15 on [−1, 1] (QUADPACK's qk15): Kronrod nodes x_k, k = 0..7 (x_7 = 0; the odd
-// ones are the Gauss nodes), their Kronrod weights, and the Gauss weights of x_1, x_3, x_5, x_7.
-constexpr long double kXgk[8] = {0.991455371120812639206854697526329L, 0.949107912342758524526189684047851L,
-                                 0.864864423359769072789712788640926L, 0.741531185599394439863864773280788L,
-                                 0.586087235467691130294144845693013L, 0.405845151377397166906606412076961L,
-                                 0.207784955007898467600689403773245L, 0.0L};
-constexpr long double kWgk[8] = {0.022935322010529224963732008058970L, 0.063092092629978553290700663189204L,
-                                 0.104790010322250183839876322541518L, 0.140653259715525918745189590510238L,
-                                 0.169004726639267902826583426598550L, 0.190350578064785409913256402421014L,
-                                 0.204432940075298892414161999234649L, 0.209482141084727828012999174891714L};
-constexpr long double kWg[4] = {0.129484966168869693270611432679082L, 0.279705391489276667901467771423780L,
-                                0.381830050505118944950369775488975L, 0.417959183673469387755102040816327L};
-
-template <class R>
-struct Panel {
-  R kronrod, magnitude, error;
-};
-
-// K15 on [a, b] with QUADPACK's error estimate (qk15): with resasc = ∫|f − mean|, the error is
-// resasc·min(1, (200 |K15 − G7| / resasc)^1.5), which tracks the K15 rule's own error for smooth f
-// (|K15 − G7| is the far larger error of G7).
-template <class R, class F>
-Panel<R> gauss_kronrod(const F& f, R a, R b) {
-  const R c = (a + b) / 2, h = (b - a) / 2;
-  R kronrod = 0, gauss = 0, magnitude = 0;
-  std::array<R, 15> values;
-  for (int k = 0; k < 8; ++k) {
-    const R x = R(kXgk[k]) * h;
-    const R f1 = f(c - x), f2 = k == 7 ? R(0) : f(c + x);
-    values[std::size_t(2 * k)] = f1;
-    if (k < 7) values[std::size_t(2 * k + 1)] = f2;
-    const R sum = f1 + f2;
-    kronrod += R(kWgk[k]) * sum;
-    magnitude += R(kWgk[k]) * (real::abs(f1) + real::abs(f2));
-    if (k % 2 == 1) gauss += R(kWg[k / 2]) * sum;
-  }
-  const R mean = kronrod / 2;
-  R resasc = 0;
-  for (int k = 0; k < 8; ++k)
-    resasc += R(kWgk[k]) * (real::abs(values[std::size_t(2 * k)] - mean) + (k < 7 ? real::abs(values[std::size_t(2 * k + 1)] - mean) : R(0)));
-  R error = real::abs((kronrod - gauss) * h);
-  resasc *= h;
-  if (resasc > 0 && error > 0) {
-    const R ratio = R(200) * error / resasc;
-    error = resasc * std::min(R(1), ratio * real::sqrt(ratio));
-  }
-  return {kronrod * h, magnitude * h, error};
-}
-
 // ∫_a^b f by bisection until each panel's error estimate is within `tolerance` of the arc's
 // ∫|f| times the panel's share of [a, b], or within 50 u of the panel's own ∫|f| (where rounding,
-// not the rule, limits it). Adds to value and magnitude. Sets `failed` (and stops refining) where
+// not the rule, limits it). Adds ∫ f and ∫|f| to `sum`. Sets `failed` (and stops refining) where
 // the estimate is not a number (the integrand overflowed) or `budget` panels were used up.
 template <class R, class F>
-void adaptive(const F& f, R a, R b, R tolerance_per_length, int& budget, R& value, R& magnitude, bool& failed) {
-  const Panel<R> p = gauss_kronrod(f, a, b);
+void adaptive(const F& f, R a, R b, R tolerance_per_length, int& budget, real::Tracked<R>& sum, bool& failed) {
+  const quadrature::KronrodPanel<R> p = quadrature::gauss_kronrod_15(f, a, b);
   --budget;
   const R allowed = std::max(tolerance_per_length * (b - a), R(50) * real::unit_roundoff<R>() * p.magnitude);
   const bool converged = p.error <= allowed;
   if (converged || budget <= 0 || !(p.error == p.error) || failed) {
     failed |= !converged;
-    value += p.kronrod;
-    magnitude += p.magnitude;
+    sum.add(p.integral, p.magnitude);
     return;
   }
   const R m = (a + b) / 2;
-  adaptive(f, a, m, tolerance_per_length, budget, value, magnitude, failed);
-  adaptive(f, m, b, tolerance_per_length, budget, value, magnitude, failed);
+  adaptive(f, a, m, tolerance_per_length, budget, sum, failed);
+  adaptive(f, m, b, tolerance_per_length, budget, sum, failed);
 }
 
 // The boundary term of a polynomial exitance, (1/π) Σ μ ∫_arc M(x(u)) (n·u)(w·u) ds, in R.
@@ -313,15 +261,14 @@ VectorSum<R> exitance_boundary_sum(const SphericalRegion& region, const Vec3& or
       return evaluate(M, x) * dot(n, u) * dot(w, u);
     };
     // ∫|f| first, coarsely, to set the absolute tolerance of the arc.
-    const Panel<R> coarse = gauss_kronrod(f, R(0), arc.length);
+    const quadrature::KronrodPanel<R> coarse = quadrature::gauss_kronrod_15(f, R(0), arc.length);
     const R tolerance_per_length = R(tolerance) * coarse.magnitude / arc.length;
-    R value = 0, magnitude = 0;
+    real::Tracked<R> integral;
     // 2000 panels (30,000 evaluations) per arc: a receiver 1e-9 from the luminaire's plane needs
     // a few hundred, where the integrand's poles come within 1e-9 of the arc's ends.
     int budget = 2000;
-    adaptive(f, R(0), arc.length, tolerance_per_length, budget, value, magnitude, failed);
-    sum.value = sum.value + (value / pi) * mu;
-    sum.magnitude += magnitude / pi;
+    adaptive(f, R(0), arc.length, tolerance_per_length, budget, integral, failed);
+    sum.add((integral.value / pi) * mu, integral.magnitude / pi);
   });
   return sum;
 }
@@ -335,14 +282,9 @@ IrradianceGradient directional_irradiance_gradient(const SphericalRegion& region
   if (radiance.c.size() + 3 > kMaxTrigDegree)
     throw Error("irradiance gradient: radiance polynomial of degree " + std::to_string(radiance.c.size() - 1) + " above " +
                 std::to_string(kMaxTrigDegree - 4));
-  IrradianceGradient g = finish(directional_gradient_sum<double>(region, origin, n, radiance), 0);
-  if (g.relative_error <= tolerance) return g;
-  g = finish(directional_gradient_sum<long double>(region, origin, n, radiance), 1);
-#ifdef DAYLIT_HAS_FLOAT128
-  if (g.relative_error <= tolerance) return g;
-  g = finish(directional_gradient_sum<real::quad>(region, origin, n, radiance), 2);
-#endif
-  return g;
+  const auto g = escalate(
+      [&](auto zero) { return finish(directional_gradient_sum<decltype(zero)>(region, origin, n, radiance)); }, tolerance);
+  return {g.value, g.relative_error, g.precision};
 }
 
 LuminaireGradient polynomial_luminaire_gradient(const SphericalRegion& region, const Vec3& origin, const Vec3& n,
@@ -376,23 +318,19 @@ LuminaireGradient polynomial_luminaire_gradient(const SphericalRegion& region, c
     // where edge terms cancel more, the next precision is tried with the arc tolerance tightened by
     // the κ just measured.
     double kappa = 10;
-    const auto attempt = [&](auto zero, int precision) {
+    const auto attempt = [&](auto zero) {
       using R = decltype(zero);
       const double u = double(real::unit_roundoff<R>());
       const double arc_tolerance = std::max(tolerance / (2 * kappa), 100 * u);
       bool failed = false;
       const VectorSum<R> sum = exitance_boundary_sum<R>(region, origin, n, nu, D, exitance, arc_tolerance, failed);
-      boundary = finish(sum, precision);
-      const double size = norm(boundary.value);
-      kappa = size > 0 ? double(sum.magnitude) / size : HUGE_VAL;
-      boundary.relative_error = failed ? HUGE_VAL : (10 * u + arc_tolerance) * kappa;
-      return boundary.relative_error <= tolerance;
+      Attempt<Vec3> a = finish(sum);
+      kappa = a.condition;
+      a.relative_error = failed ? HUGE_VAL : (10 * u + arc_tolerance) * kappa;
+      return a;
     };
-    if (!attempt(0.0, 0) && !attempt(0.0L, 1)) {
-#ifdef DAYLIT_HAS_FLOAT128
-      attempt(real::quad(0), 2);
-#endif
-    }
+    const auto b = escalate(attempt, tolerance);
+    boundary = {b.value, b.relative_error, b.precision};
   }
 
   // Interior term E[g] − (ν/D) E[(x − p)·g], g = (I − νν^T)∇M.

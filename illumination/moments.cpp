@@ -3,34 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "illumination/cosine_power_arc.hpp"
+#include "illumination/precision_escalation.hpp"
 #include "illumination/solid_angle.hpp"
 
 namespace daylit {
 
 namespace {
 
-thread_local MomentAccuracy last_accuracy;
-
-// A sum that remembers the magnitude of what went into it, to detect cancellation.
 template <class R>
-struct Sum {
-  R value = 0, magnitude = 0;
-  void add(R term, R term_magnitude) {
-    value += term;
-    magnitude += term_magnitude;
-  }
-  void add(R term) { add(term, real::abs(term)); }
-};
-
-// Van Oosterom–Strackee (see solid_angle.hpp), fan from the first vertex of each loop.
-template <class R>
-Sum<R> solid_angle_sum(const SphericalRegion& region) {
-  Sum<R> sum;
-  for (const auto& loop : region.loops) for_each_solid_angle_term<R>(loop, [&](R term) { sum.add(term); });
-  return sum;
-}
+using Sum = real::Tracked<R>;
 
 template <class R>
 Sum<R> lambert_sum(const SphericalRegion& region, const Vec3& n_in) {
@@ -48,12 +32,6 @@ std::vector<CosinePowerArc<R>> arcs_about(const SphericalRegion& region, const r
   return arcs;
 }
 
-template <class R>
-real::V3<R> unit(const Vec3& v) {
-  const real::V3<R> r(v);
-  return r / real::norm(r);
-}
-
 // τ^k and the magnitudes of their terms, k = 0..n, for a unit axis (eq. 11 unrolled: with unit w,
 // (k + 1) τ^k = σ [k even] + Σ_edges (w·m) Σ_{i ≤ k−1, i ≡ k−1 mod 2} G_i).
 template <class R>
@@ -69,47 +47,40 @@ std::vector<Sum<R>> axial_moment_sums(const std::vector<CosinePowerArc<R>>& arcs
   tau[0] = sigma;
   for (int k = 1; k <= n; ++k) {
     Sum<R>& running = k % 2 == 0 ? even : odd;
-    running.add(boundary[k - 1].value, boundary[k - 1].magnitude);
-    tau[k] = {running.value / R(k + 1), running.magnitude / R(k + 1)};
+    running += boundary[k - 1];
+    tau[k] = running / R(k + 1);
   }
   return tau;
 }
 
-// The complementary form of τ^n (moments.hpp); false where it does not apply (an edge within
+// The complementary form of τ^n (moments.hpp); nullopt where it does not apply (an edge within
 // ~1e-3 rad of ±w, where the tails converge too slowly, or a winding number that does not come
 // out an integer).
 template <class R>
-bool complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n, Sum<R>& out) {
+std::optional<Sum<R>> complementary_axial_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
   const R two_pi = R(2) * real::pi<R>();
   R winding = n % 2 == 0 ? sigma.value : R(0);
   for (const auto& arc : arcs) winding += n % 2 == 0 ? arc.odd_series_times_wm() : arc.even_series_times_wm();
   winding /= two_pi;
   const R N = real::round(winding);
-  if (!(real::abs(winding - N) < R(0.05))) return false;
-  out = Sum<R>{};
+  if (!(real::abs(winding - N) < R(0.05))) return std::nullopt;
+  Sum<R> out;
   out.add(two_pi * N);
   for (const auto& arc : arcs) {
-    R tail, magnitude;
-    if (!arc.tail(n + 1, tail, magnitude)) return false;
-    const R wm = arc.w_dot_normal();
-    out.add(-wm * tail, real::abs(wm) * magnitude);
+    const std::optional<Sum<R>> tail = arc.tail(n + 1);
+    if (!tail) return std::nullopt;
+    out += -arc.w_dot_normal() * *tail;
   }
-  out.value /= R(n + 1);
-  out.magnitude /= R(n + 1);
-  return true;
+  return out / R(n + 1);
 }
-
-template <class R>
-double condition(const Sum<R>& s);
 
 // τ^n for a unit axis by whichever of eq. 11 and the complementary form cancels less.
 template <class R>
 Sum<R> axial_moment_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>& sigma, int n) {
   const Sum<R> forward = axial_moment_sums<R>(arcs, sigma, n)[n];
   if (forward.magnitude <= R(64) * real::abs(forward.value)) return forward;
-  Sum<R> complementary;
-  if (complementary_axial_sum(arcs, sigma, n, complementary) && condition(complementary) < condition(forward))
-    return complementary;
+  const std::optional<Sum<R>> complementary = complementary_axial_sum(arcs, sigma, n);
+  if (complementary && tracked_condition(*complementary) < tracked_condition(forward)) return *complementary;
   return forward;
 }
 
@@ -122,7 +93,7 @@ Sum<R> double_axis_sum(const std::vector<CosinePowerArc<R>>& arcs, const Sum<R>&
   Sum<R> result;
   if (vw != 0) {
     const Sum<R> tau = axial_moment_sum(arcs, sigma, n + 1);
-    result.add(vw * tau.value, real::abs(vw) * tau.magnitude);
+    result += vw * tau;
   }
   for (const auto& arc : arcs) result.add(dot(v_perp, arc.arc().normal) * arc.G(n) / R(n + 2));
   return result;
@@ -136,7 +107,7 @@ Sum<R> perpendicular_pair_sum(const std::vector<CosinePowerArc<R>>& arcs, const 
   const R ab = dot(a_perp, b_perp);
   if (ab != 0) {
     const Sum<R> tau = axial_moment_sum(arcs, sigma, n);
-    result.add(ab * tau.value, real::abs(ab) * tau.magnitude);
+    result += ab * tau;
   }
   for (const auto& arc : arcs) {
     const R bm = dot(b_perp, arc.arc().normal);
@@ -154,21 +125,19 @@ Sum<R> perpendicular_pair_sum(const std::vector<CosinePowerArc<R>>& arcs, const 
     }
     result.add(bm * line);
   }
-  result.value /= R(n + 3);
-  result.magnitude /= R(n + 3);
-  return result;
+  return result / R(n + 3);
 }
 
 template <class R>
 Sum<R> triple_axis_sum(const SphericalRegion& region, const Vec3& w_in, const Vec3& a_in, const Vec3& b_in, int n) {
-  const real::V3<R> w = unit<R>(w_in), a(a_in), b(b_in);
+  const real::V3<R> w = real::unit<R>(w_in), a(a_in), b(b_in);
   const auto arcs = arcs_about(region, w);
-  const Sum<R> sigma = solid_angle_sum<R>(region);
+  const Sum<R> sigma = solid_angle_tracked<R>(region);
   const R aw = dot(a, w), bw = dot(b, w);
   const real::V3<R> a_perp = a - aw * w, b_perp = b - bw * w;
   Sum<R> result;
   auto add = [&](R factor, const Sum<R>& s) {
-    if (factor != 0) result.add(factor * s.value, real::abs(factor) * s.magnitude);
+    if (factor != 0) result += factor * s;
   };
   if (aw != 0 && bw != 0) add(aw * bw, axial_moment_sum(arcs, sigma, n + 2));
   // ∫ (w·u)^{n+1} (x⊥·u) dσ = Σ (x⊥·m) G_{n+1} / (n + 3): double_axis_sum with v ⟂ w.
@@ -176,64 +145,6 @@ Sum<R> triple_axis_sum(const SphericalRegion& region, const Vec3& w_in, const Ve
   if (bw != 0) add(bw, double_axis_sum(arcs, sigma, w, a_perp, n + 1));
   add(R(1), perpendicular_pair_sum(arcs, sigma, a_perp, b_perp, n));
   return result;
-}
-
-double to_double(const Sum<double>& s) { return s.value; }
-template <class R>
-double to_double(const Sum<R>& s) {
-  return double(s.value);
-}
-template <class R>
-std::vector<double> to_double(const std::vector<Sum<R>>& sums) {
-  std::vector<double> out;
-  for (const auto& s : sums) out.push_back(double(s.value));
-  return out;
-}
-template <class R, std::size_t N>
-std::array<double, N> to_double(const std::array<Sum<R>, N>& sums) {
-  std::array<double, N> out;
-  for (std::size_t i = 0; i < N; ++i) out[i] = double(sums[i].value);
-  return out;
-}
-
-// Largest κ = magnitude/|value| over a result (a Sum or a container of them).
-template <class R>
-double condition(const Sum<R>& s) {
-  return s.magnitude == 0 ? 1.0 : double(s.magnitude / real::abs(s.value));
-}
-template <class Sums>
-double condition(const Sums& sums) {
-  double k = 1;
-  for (const auto& s : sums) k = std::max(k, condition(s));
-  return k;
-}
-
-// Evaluates compute(R{}) in double, then long double, then __float128, until the estimated
-// relative error (10 + order)·u·κ (u the unit roundoff, κ = Σ|terms| / |result|) is below target,
-// and records the precision used and the estimate for last_moment_accuracy(). The order enters
-// because every term carries (w·u)^k, whose rounding is k·u relative: a 1e-4 rad luminaire at
-// n = 1000 has κ ≈ 60 and an error of 1e-11 in double, 1e-16 in long double.
-template <class F>
-auto with_escalation(int order, F&& compute, double target = 1e-13) {
-  auto estimate = [&](double u, const auto& result) { return (10.0 + order) * u * condition(result); };
-  const auto d = compute(double{});
-  if (estimate(0x1p-53, d) <= target) {
-    last_accuracy = MomentAccuracy{0, estimate(0x1p-53, d)};
-    return to_double(d);
-  }
-  const auto l = compute((long double)0);
-#ifdef DAYLIT_HAS_FLOAT128
-  if (estimate(0x1p-64, l) <= target) {
-    last_accuracy = MomentAccuracy{1, estimate(0x1p-64, l)};
-    return to_double(l);
-  }
-  const auto q = compute(real::quad(0));
-  last_accuracy = MomentAccuracy{2, estimate(0x1p-113, q)};
-  return to_double(q);
-#else
-  last_accuracy = MomentAccuracy{1, estimate(0x1p-64, l)};
-  return to_double(l);
-#endif
 }
 
 // Both sums of cosine_moments(): [0] = ∫(n·u), [1] = ∫(w·u)(n·u) by Arvo's eq. 14 with n = 1:
@@ -250,11 +161,10 @@ std::array<Sum<R>, 2> cosine_moment_sums(const SphericalRegion& region, const Ve
     boundary.add(nm * (dot(w, arc.start) * arc.sin_length + dot(w, arc.start_tangent) * arc.one_minus_cos));
   });
   const R wn = dot(w, n);
-  const Sum<R> sigma = solid_angle_sum<R>(region);
-  sums[1].add(wn * sigma.value, real::abs(wn) * sigma.magnitude);
-  sums[1].add(boundary.value, boundary.magnitude);
-  sums[1].value /= R(3);
-  sums[1].magnitude /= R(3);
+  const Sum<R> sigma = solid_angle_tracked<R>(region);
+  sums[1] += wn * sigma;
+  sums[1] += boundary;
+  sums[1] = sums[1] / R(3);
   return sums;
 }
 
@@ -262,7 +172,7 @@ std::array<Sum<R>, 2> cosine_moment_sums(const SphericalRegion& region, const Ve
 template <class R>
 std::array<Sum<R>, 2> polynomial_cosine_sums(const SphericalRegion& region, const Vec3& a_in, const Vec3& n_in,
                                              const Vec3& z_in, const std::vector<double>& c) {
-  const real::V3<R> a = unit<R>(a_in), n(n_in), z(z_in);
+  const real::V3<R> a = real::unit<R>(a_in), n(n_in), z(z_in);
   const int K = int(c.size()) - 1;
   const std::size_t size = std::size_t(K) + 1;
   std::vector<Sum<R>> b_tau(size), b_cos(size), b_lin(size), b_both(size);  // the edge sums of each recurrence
@@ -293,22 +203,20 @@ std::array<Sum<R>, 2> polynomial_cosine_sums(const SphericalRegion& region, cons
   const R an = dot(a, n), az = dot(a, z), nz = dot(n, z);
   auto combine = [](std::initializer_list<std::pair<R, Sum<R>>> terms, R divisor) {
     Sum<R> s;
-    for (const auto& [factor, sum] : terms) s.add(factor * sum.value, real::abs(factor) * sum.magnitude);
-    s.value /= divisor;
-    s.magnitude /= divisor;
-    return s;
+    for (const auto& [factor, sum] : terms) s += factor * sum;
+    return s / divisor;
   };
   const Sum<R> none{};
   std::vector<Sum<R>> tau(size), lin(size);  // τ^k about a; ∫ (a·u)^k (z·u)
   std::array<Sum<R>, 2> total;
   for (int k = 0; k <= K; ++k) {
-    tau[k] = k == 0 ? solid_angle_sum<R>(region)
+    tau[k] = k == 0 ? solid_angle_tracked<R>(region)
                     : combine({{R(k - 1), k >= 2 ? tau[k - 2] : none}, {R(1), b_tau[k - 1]}}, R(k + 1));
     lin[k] = combine({{R(k) * az, k >= 1 ? tau[k - 1] : none}, {R(1), b_lin[k]}}, R(k + 2));
     const Sum<R> cosine = combine({{R(k) * an, k >= 1 ? tau[k - 1] : none}, {R(1), b_cos[k]}}, R(k + 2));
     const Sum<R> both = combine({{R(k) * an, k >= 1 ? lin[k - 1] : none}, {nz, tau[k]}, {R(1), b_both[k]}}, R(k + 3));
-    total[0].add(R(c[k]) * cosine.value, real::abs(R(c[k])) * cosine.magnitude);
-    total[1].add(R(c[k]) * both.value, real::abs(R(c[k])) * both.magnitude);
+    total[0] += R(c[k]) * cosine;
+    total[1] += R(c[k]) * both;
   }
   return total;
 }
@@ -322,19 +230,21 @@ PolynomialCosineMoments polynomial_cosine_moments(const SphericalRegion& region,
   // 1e5 and cancel (κ ~ 1e6 even on benign regions), so this runs in long double; a tighter
   // target sends every pair on to __float128 (50× slower) for digits that a fit good to ~1e-3
   // does not have.
-  const auto m = with_escalation(
+  const auto m = escalate_tracked(
       int(c.size()) + 1, [&](auto r) { return polynomial_cosine_sums<decltype(r)>(region, a, n, z, c); }, 1e-11);
-  return {m[0], m[1]};
+  return {m.value[0], m.value[1]};
 }
 
 CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const Vec3& w) {
-  const auto m = with_escalation(1, [&](auto r) { return cosine_moment_sums<decltype(r)>(region, n, w); });
-  return {m[0], m[1]};
+  const auto m = escalate_tracked(1, [&](auto r) { return cosine_moment_sums<decltype(r)>(region, n, w); });
+  return {m.value[0], m.value[1]};
 }
 
-double lambert(const SphericalRegion& region, const Vec3& n) {
-  return with_escalation(1, [&](auto r) { return lambert_sum<decltype(r)>(region, n); });
+Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec3& n) {
+  return escalate_tracked(1, [&](auto r) { return lambert_sum<decltype(r)>(region, n); });
 }
+
+double lambert(const SphericalRegion& region, const Vec3& n) { return lambert_with_accuracy(region, n).value; }
 
 // The kernels take a unit axis; (w·u)^n = |w|^n (ŵ·u)^n. |w|^n from |w|² in long double: pow(norm(w),
 // n) would raise norm()'s rounding to the n-th power (1.3e-13 at n = 1000 for a normalised w).
@@ -343,39 +253,68 @@ static double length_power(const Vec3& w, int n) {
   return double(std::exp(0.5L * n * std::log1p(s - 1)));
 }
 
-std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, int n) {
-  std::vector<double> tau = with_escalation(n, [&](auto r) {
+// A result of the unit-axis kernels times |w|^n.
+static Escalated<double> scaled(Escalated<double> m, double scale) {
+  m.value *= scale;
+  return m;
+}
+
+Escalated<std::vector<double>> axial_moments_with_accuracy(const SphericalRegion& region, const Vec3& w, int n) {
+  auto tau = escalate_tracked(n, [&](auto r) {
     using R = decltype(r);
-    const auto arcs = arcs_about(region, unit<R>(w));
-    return axial_moment_sums<R>(arcs, solid_angle_sum<R>(region), n);
+    const auto arcs = arcs_about(region, real::unit<R>(w));
+    return axial_moment_sums<R>(arcs, solid_angle_tracked<R>(region), n);
   });
-  for (int k = 1; k <= n; ++k) tau[k] *= length_power(w, k);
+  for (int k = 1; k <= n; ++k) tau.value[k] *= length_power(w, k);
   return tau;
 }
 
+std::vector<double> axial_moments(const SphericalRegion& region, const Vec3& w, int n) {
+  return axial_moments_with_accuracy(region, w, n).value;
+}
+
+Escalated<double> axial_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, int n) {
+  return scaled(escalate_tracked(n,
+                                 [&](auto r) {
+                                   using R = decltype(r);
+                                   return axial_moment_sum<R>(arcs_about(region, real::unit<R>(w)),
+                                                              solid_angle_tracked<R>(region), n);
+                                 }),
+                length_power(w, n));
+}
+
 double axial_moment(const SphericalRegion& region, const Vec3& w, int n) {
-  return length_power(w, n) * with_escalation(n, [&](auto r) {
-           using R = decltype(r);
-           return axial_moment_sum<R>(arcs_about(region, unit<R>(w)), solid_angle_sum<R>(region), n);
-         });
+  return axial_moment_with_accuracy(region, w, n).value;
+}
+
+Escalated<double> double_axis_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n) {
+  return scaled(escalate_tracked(n + 1,
+                                 [&](auto r) {
+                                   using R = decltype(r);
+                                   const real::V3<R> w_unit = real::unit<R>(w);
+                                   return double_axis_sum<R>(arcs_about(region, w_unit), solid_angle_tracked<R>(region),
+                                                             w_unit, real::V3<R>(v), n);
+                                 }),
+                length_power(w, n));
 }
 
 double double_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n) {
-  return length_power(w, n) * with_escalation(n + 1, [&](auto r) {
-           using R = decltype(r);
-           const real::V3<R> w_unit = unit<R>(w);
-           return double_axis_sum<R>(arcs_about(region, w_unit), solid_angle_sum<R>(region), w_unit, real::V3<R>(v), n);
-         });
+  return double_axis_moment_with_accuracy(region, w, v, n).value;
+}
+
+Escalated<double> triple_axis_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, const Vec3& a,
+                                                   const Vec3& b, int n) {
+  return scaled(escalate_tracked(n + 2, [&](auto r) { return triple_axis_sum<decltype(r)>(region, w, a, b, n); }),
+                length_power(w, n));
 }
 
 double triple_axis_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b, int n) {
-  return length_power(w, n) *
-         with_escalation(n + 2, [&](auto r) { return triple_axis_sum<decltype(r)>(region, w, a, b, n); });
+  return triple_axis_moment_with_accuracy(region, w, a, b, n).value;
 }
 
 TruncatedMoment axial_moment_truncated(const SphericalRegion& region, const Vec3& w, int n, double tolerance) {
-  const auto arcs = arcs_about(region, unit<double>(w));
-  const Sum<double> sigma = solid_angle_sum<double>(region);
+  const auto arcs = arcs_about(region, real::unit<double>(w));
+  const Sum<double> sigma = solid_angle_tracked<double>(region);
   Sum<double> sum;
   if (n % 2 == 0) sum.add(sigma.value, sigma.magnitude);
   double dropped = 0;
@@ -393,7 +332,7 @@ TruncatedMoment axial_moment_truncated(const SphericalRegion& region, const Vec3
 
 TruncatedMoment double_axis_moment_truncated(const SphericalRegion& region, const Vec3& w_in, const Vec3& v, int n,
                                              double tolerance) {
-  const real::V3<double> w = unit<double>(w_in);
+  const real::V3<double> w = real::unit<double>(w_in);
   const double vw = dot(real::V3<double>(v), w);
   const real::V3<double> v_perp = real::V3<double>(v) - vw * w;
   TruncatedMoment axial{0, 0, 0};
@@ -415,7 +354,5 @@ TruncatedMoment double_axis_moment_truncated(const SphericalRegion& region, cons
   const double scale = length_power(w_in, n);
   return {scale * result.value, scale * result.error_bound, result.terms};
 }
-
-MomentAccuracy last_moment_accuracy() noexcept { return last_accuracy; }
 
 }  // namespace daylit

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/spherical_region.hpp"
+#include "illumination/precision_escalation.hpp"
 
 namespace daylit {
 
@@ -90,13 +91,15 @@ struct PolynomialCosineMoments {
 PolynomialCosineMoments polynomial_cosine_moments(const SphericalRegion& region, const Vec3& a, const Vec3& n,
                                                   const Vec3& z, const std::vector<double>& c);
 
-// What the last call on this thread needed and achieved: the precision (0 double, 1 long double,
-// 2 __float128) and the estimated relative error 10·u·κ, κ = Σ|terms| / |result|. An estimate
-// above 1e-10 means cancellation beyond what __float128 carries.
-struct MomentAccuracy {
-  int precision = 0;
-  double relative_error = 0;
-};
-MomentAccuracy last_moment_accuracy() noexcept;
+// The same moments with their accuracy (precision_escalation.hpp): the value, the estimated
+// relative error (10 + n)·u·κ, κ = Σ|terms| / |result| (an estimate above 1e-10 means
+// cancellation beyond what __float128 carries), the precision that settled it (0 double, 1 long
+// double, 2 __float128) and the κ of the double pass.
+Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec3& n);
+Escalated<std::vector<double>> axial_moments_with_accuracy(const SphericalRegion& region, const Vec3& w, int n);
+Escalated<double> axial_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, int n);
+Escalated<double> double_axis_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n);
+Escalated<double> triple_axis_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, const Vec3& a,
+                                                   const Vec3& b, int n);
 
 }  // namespace daylit

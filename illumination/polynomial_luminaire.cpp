@@ -9,6 +9,7 @@
 
 #include "geometry/error.hpp"
 #include "illumination/rational_moments.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -49,7 +50,7 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
                 " the recurrences of Theorem 4 lose more digits than __float128 carries");
   const Vec3 N = normalized(plane_normal);
   const double side = dot(N, plane_point - origin);
-  if (region.empty() || side == 0 || exitance.empty()) return {0, 0};
+  if (region.empty() || side == 0 || exitance.empty()) return {0, 0, double_precision, 1};
   const Vec3 w = side > 0 ? N : -N;
   const double h = std::abs(side);
   for (const auto& loop : region.loops)
@@ -72,15 +73,15 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
     powers[c].push_back(PlanePolynomial(1, std::vector<long double>(1, 1.0L)));
     for (int i = 1; i <= degree; ++i) powers[c].push_back(multiply(powers[c].back(), affine));
   }
-  // m_abs: the same sums with absolute values, for the rounding of the re-expansion.
-  PlanePolynomial m(std::size_t(degree) + 1, std::vector<long double>(std::size_t(degree) + 1, 0.0L)), m_abs = m;
+  // With the magnitudes of their terms (tracked_sum.hpp), for the rounding of the re-expansion.
+  std::vector<std::vector<real::Tracked<long double>>> m(
+      std::size_t(degree) + 1, std::vector<real::Tracked<long double>>(std::size_t(degree) + 1));
   for (const ExitanceTerm& t : exitance) {
     if (t.coef == 0) continue;
     const PlanePolynomial term = multiply(multiply(powers[0][t.i], powers[1][t.j]), powers[2][t.k]);
     for (std::size_t a = 0; a < term.size() && a < m.size(); ++a)
       for (std::size_t b = 0; b < term[a].size() && b < m.size(); ++b) {
-        m[a][b] += t.coef * term[a][b];
-        m_abs[a][b] += std::abs(t.coef * term[a][b]);
+        m[a][b].add(t.coef * term[a][b]);
       }
   }
 
@@ -91,8 +92,8 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
   std::vector<std::pair<int, int>> sources;
   for (int a = 0; a <= degree; ++a)
     for (int b = 0; a + b <= degree; ++b) {
-      if (m[a][b] == 0) continue;
-      const long double k = m[a][b] * std::pow((long double)h, a + b) / std::numbers::pi_v<long double>;
+      if (m[a][b].value == 0) continue;
+      const long double k = m[a][b].value * std::pow((long double)h, a + b) / std::numbers::pi_v<long double>;
       const int e = -(a + b);
       monomials.push_back({double(k * n1), a + 1, b, e});
       monomials.push_back({double(k * n2), a, b + 1, e});
@@ -101,17 +102,17 @@ LuminaireIrradiance polynomial_luminaire_irradiance(const SphericalRegion& regio
     }
   std::vector<double> values;
   const RationalMoment r = frame_polynomial_moment(region, f.e1, f.e2, f.w, monomials, &values);
-  // Each m_ab carries a rounding error of about 8 u m_abs_ab (long double sums of products of
+  // Each m_ab carries a rounding error of about 8 u |m|_ab (long double sums of products of
   // the coordinates' powers): where the exitance is given about a point far from the luminaire,
   // these cancel and dominate everything else.
   long double reexpansion = 0;
   for (std::size_t i = 0; i < monomials.size(); i += 3) {
     const auto [a, b] = sources[i];
-    const long double k = m_abs[a][b] * std::pow((long double)h, a + b) / std::numbers::pi_v<long double>;
+    const long double k = m[a][b].magnitude * std::pow((long double)h, a + b) / std::numbers::pi_v<long double>;
     reexpansion += k * std::abs(n1 * values[i] + n2 * values[i + 1] + n3 * values[i + 2]);
   }
   const double reexpansion_error = double(8 * 0x1p-64L * reexpansion) / std::abs(r.value);
-  return {r.value, r.relative_error + reexpansion_error};
+  return {r.value, r.relative_error + reexpansion_error, r.precision, r.condition};
 }
 
 }  // namespace daylit

@@ -28,6 +28,8 @@ using ExitancePolynomial = std::vector<ExitanceTerm>;
 struct LuminaireIrradiance {
   double value;           // irradiance, in the unit of the exitance
   double relative_error;  // estimated from the cancellation of the terms (rational_moments.hpp)
+  int precision = 0;      // the precision the frame recurrences settled in (0 double, 1 long double, 2 __float128)
+  double condition = 1;   // κ of their double pass (rational_moments.hpp)
 };
 
 // Highest total degree of the exitance accepted. Measured (bench rational; the stress geometries

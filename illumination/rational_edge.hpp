@@ -1,53 +1,19 @@
 #pragma once
 // Per-edge building blocks of the rational moments (rational_moments.cpp): an arc in the frame
 // of the denominator's axis w, the integrals G(r, t) = ∫ sin^r s cos^t s ds over it, and numbers
-// that carry the magnitude of what was summed into them, to estimate cancellation.
+// that carry the magnitude of what was summed into them (tracked_sum.hpp), to estimate cancellation.
 
 #include <algorithm>
 #include <vector>
 
 #include "illumination/arc_edge.hpp"
 #include "illumination/clausen.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit::rational {
 
-// A value and the sum of the absolute values of the terms it was formed from: the rounding error
-// of a sum is at most about u times the latter, whatever cancelled on the way.
-template <class R>
-struct Tracked {
-  R v = 0, m = 0;
-  Tracked& operator+=(const Tracked& o) {
-    v += o.v;
-    m += o.m;
-    return *this;
-  }
-  Tracked& operator-=(const Tracked& o) {
-    v -= o.v;
-    m += o.m;
-    return *this;
-  }
-};
-template <class R>
-Tracked<R> operator+(Tracked<R> a, const Tracked<R>& b) {
-  return a += b;
-}
-template <class R>
-Tracked<R> operator-(Tracked<R> a, const Tracked<R>& b) {
-  return a -= b;
-}
-template <class R>
-Tracked<R> operator*(R s, const Tracked<R>& a) {
-  return {s * a.v, real::abs(s) * a.m};
-}
-template <class R>
-Tracked<R> operator/(const Tracked<R>& a, R s) {
-  return {a.v / s, a.m / real::abs(s)};
-}
-// A value computed without cancellation (to a few ulp of itself).
-template <class R>
-Tracked<R> exact(R v) {
-  return {v, real::abs(v)};
-}
+using real::exact;
+using real::Tracked;
 
 // One great arc in the frame of a unit axis w with w·u > 0 on it: u(s) = p cos s + q sin s for
 // s ∈ [s0, s1], s1 − s0 = θ, with w·u = c cos s (Chen and Arvo 2000, eq. 32; Arvo 1995, eq. 18).
@@ -190,8 +156,8 @@ Tracked<R> expand_integral(const GTable<R>& G, const std::vector<R>& P, const st
   for (int r = 0; r <= m; ++r) {
     if (P[r] == 0 && Pm[r] == 0) continue;
     const Tracked<R>& g = G(r, m - r + t);
-    sum.v += P[r] * g.v;
-    sum.m += Pm[r] * g.m;
+    sum.value += P[r] * g.value;
+    sum.magnitude += Pm[r] * g.magnitude;
   }
   return sum;
 }

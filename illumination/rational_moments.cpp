@@ -8,6 +8,9 @@
 
 #include "geometry/error.hpp"
 #include "illumination/cosine_power_arc.hpp"
+#include "illumination/gauss_legendre.hpp"
+#include "illumination/orthonormal_basis.hpp"
+#include "illumination/precision_escalation.hpp"
 #include "illumination/rational_edge.hpp"
 #include "illumination/solid_angle.hpp"
 
@@ -20,30 +23,16 @@ using rational::WFrameArc;
 
 namespace {
 
-template <class R>
-real::V3<R> unit(const Vec3& v) {
-  const real::V3<R> r(v);
-  return r / real::norm(r);
-}
-
-template <class R>
-Tracked<R> solid_angle_tracked(const SphericalRegion& region) {
-  Tracked<R> sum;
-  for (const auto& loop : region.loops) for_each_solid_angle_term<R>(loop, [&](R term) { sum += exact(term); });
-  return sum;
-}
-
 // −Σ_edges (w·m) [Λ(c, s1) − Λ(c, s0)] = −Σ_edges sign(w·m) [bracket(s1) − bracket(s0)]/4
 // (eqs. 28, 33, 36; lambda_bracket() in clausen.hpp). Edges in w's plane of symmetry (w·m = 0)
 // contribute nothing.
 template <class R>
 Tracked<R> base_moment_edge(const WFrameArc<R>& e) {
   if (e.wm == 0) return {};
-  R m0 = 0, m1 = 0;
-  const R b1 = lambda_bracket<R>(e.c, e.kappa(), e.sin1, e.cos1, &m1);
-  const R b0 = lambda_bracket<R>(e.c, e.kappa(), e.sin0, e.cos0, &m0);
+  const Tracked<R> b1 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin1, e.cos1);
+  const Tracked<R> b0 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin0, e.cos0);
   const R sign = e.wm > 0 ? R(-0.25) : R(0.25);
-  return {sign * (b1 - b0), (m1 + m0) / 4};
+  return {sign * (b1.value - b0.value), (b1.magnitude + b0.magnitude) / 4};
 }
 
 // The moments J(a, b, e) = ∫_A u1^a u2^b u3^e dσ in the frame (e1, e2, w) (rational_moments.hpp),
@@ -138,34 +127,6 @@ class FrameMoments {
   std::map<std::tuple<int, int, int>, Tracked<R>> memo_;
 };
 
-thread_local RationalDiagnostics last_diagnostics;
-
-// Evaluates compute(R{}) in double, long double, then __float128 until (10 + order)·u·κ ≤ 1e-13
-// (moments.cpp's with_escalation, for Tracked results), and records what it took.
-template <class F>
-RationalMoment escalate(int order, F&& compute) {
-  constexpr double target = 1e-13;
-  auto condition = [](auto t) {
-    const double mag = double(t.m), val = std::abs(double(t.v));
-    if (mag == 0) return 1.0;
-    return val == 0 ? std::numeric_limits<double>::infinity() : mag / val;
-  };
-  auto estimate = [&](double u, auto t) { return (10.0 + order) * u * condition(t); };
-  const auto d = compute(double{});
-  last_diagnostics = {0, condition(d)};
-  if (estimate(0x1p-53, d) <= target) return {double(d.v), estimate(0x1p-53, d)};
-  const auto l = compute((long double)0);
-  last_diagnostics.precision = 1;
-#ifdef DAYLIT_HAS_FLOAT128
-  if (estimate(0x1p-64, l) <= target) return {double(l.v), estimate(0x1p-64, l)};
-  const auto q = compute(real::quad(0));
-  last_diagnostics.precision = 2;
-  return {double(q.v), estimate(0x1p-113, q)};
-#else
-  return {double(l.v), estimate(0x1p-64, l)};
-#endif
-}
-
 // The region must lie strictly on the positive side of w·u = 0 (then so do its arcs, which are
 // shorter than π).
 void check_side(const SphericalRegion& region, const Vec3& w) {
@@ -179,24 +140,18 @@ void check_side(const SphericalRegion& region, const Vec3& w) {
 
 }  // namespace
 
-RationalDiagnostics last_rational_diagnostics() noexcept { return last_diagnostics; }
-
 AxisFrame frame_about(const Vec3& w_in) {
   const Vec3 w = normalized(w_in);
-  // The coordinate axis least aligned with w, crossed with it.
-  const Vec3 pick = std::abs(w.x) <= std::abs(w.y) && std::abs(w.x) <= std::abs(w.z)
-                        ? Vec3{1, 0, 0}
-                        : (std::abs(w.y) <= std::abs(w.z) ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
-  const Vec3 e1 = normalized(cross(pick, w));
-  return {e1, cross(w, e1), w};
+  const PerpendicularBasis<double> f = perpendicular_basis(real::V3<double>(w));
+  return {{f.e1.x, f.e1.y, f.e1.z}, {f.e2.x, f.e2.y, f.e2.z}, w};
 }
 
 RationalMoment rational_base_moment(const SphericalRegion& region, const Vec3& w) {
   check_side(region, w);
   const double scale = 1 / norm(w);
-  RationalMoment m = escalate(1, [&](auto r) {
+  RationalMoment m = escalate_tracked(1, [&](auto r) {
     using R = decltype(r);
-    const real::V3<R> wr = unit<R>(w);
+    const real::V3<R> wr = real::unit<R>(w);
     Tracked<R> sum;
     for_each_edge<R>(region, [&](const ArcEdge<R>& arc) { sum += base_moment_edge(WFrameArc<R>(arc, wr)); });
     return sum;
@@ -216,14 +171,14 @@ RationalMoment frame_polynomial_moment(const SphericalRegion& region, const Vec3
     e_max = std::max(e_max, t.e);
   }
   std::vector<double> values;
-  RationalMoment m = escalate(max_ab + std::max(e_max, -e_min), [&](auto r) {
+  RationalMoment m = escalate_tracked(max_ab + std::max(e_max, -e_min), [&](auto r) {
     using R = decltype(r);
-    FrameMoments<R> J(region, unit<R>(e1), unit<R>(e2), unit<R>(w), max_ab, e_min, e_max);
+    FrameMoments<R> J(region, real::unit<R>(e1), real::unit<R>(e2), real::unit<R>(w), max_ab, e_min, e_max);
     Tracked<R> sum;
     values.clear();
     for (const auto& t : terms) {
       const Tracked<R> j = J.J(t.a, t.b, t.e);
-      values.push_back(double(j.v));
+      values.push_back(double(j.value));
       if (t.coef != 0) sum += R(t.coef) * j;
     }
     return sum;
@@ -253,16 +208,12 @@ RationalMoment rational_moment(const SphericalRegion& region, const std::vector<
   // The frame and the expansion of Π (a_k·u)^{p_k} in (u1, u2, u3) are formed in the precision of
   // the sum (frame_about's construction redone in R): rounded to double first, the coefficients
   // would carry 2^-53 errors into results whose terms cancel (1e-14 measured on ∫ (a·u)(b·u)/(w·u)).
-  RationalMoment m = escalate(degree + q, [&](auto r) {
+  RationalMoment m = escalate_tracked(degree + q, [&](auto r) {
     using R = decltype(r);
-    const real::V3<R> wr = unit<R>(w);
-    // The coordinate axis least aligned with w, as in frame_about().
-    const Vec3 wd = normalized(w);
-    const Vec3 axis = std::abs(wd.x) <= std::abs(wd.y) && std::abs(wd.x) <= std::abs(wd.z)
-                          ? Vec3{1, 0, 0}
-                          : (std::abs(wd.y) <= std::abs(wd.z) ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
-    const real::V3<R> c = cross(real::V3<R>(axis), wr);
-    const real::V3<R> e1 = c / real::norm(c), e2 = cross(wr, e1);
+    const real::V3<R> wr = real::unit<R>(w);
+    const PerpendicularBasis<R> basis = perpendicular_basis(wr);  // frame_about() in R
+    const real::V3<R>& e1 = basis.e1;
+    const real::V3<R>& e2 = basis.e2;
     // c[a][b]: coefficient of u1^a u2^b u3^{d−a−b}, with the magnitudes of its terms.
     int d = 0;
     std::vector<std::vector<Tracked<R>>> coef(1, std::vector<Tracked<R>>(1, exact(R(1))));
@@ -285,10 +236,10 @@ RationalMoment rational_moment(const SphericalRegion& region, const std::vector<
     for (int a = 0; a <= d; ++a)
       for (int b = 0; a + b <= d; ++b) {
         const Tracked<R>& k = coef[a][b];
-        if (k.v == 0 && k.m == 0) continue;
+        if (k.value == 0 && k.magnitude == 0) continue;
         const Tracked<R> j = J.J(a, b, d - a - b - q);
         // The product of two sums: value k·j, magnitude |k|·|j|'s terms plus k's terms times |j|.
-        sum += Tracked<R>{k.v * j.v, real::abs(k.v) * j.m + k.m * real::abs(j.v)};
+        sum += Tracked<R>{k.value * j.value, real::abs(k.value) * j.magnitude + k.magnitude * real::abs(j.value)};
       }
     return sum;
   });
@@ -305,31 +256,17 @@ namespace daylit {
 
 namespace {
 
-// Gauss–Legendre nodes and weights on [0, 1], in long double, cached per thread.
+// Gauss–Legendre nodes and weights (gauss_legendre.hpp) mapped to [0, 1], cached per thread.
 const std::pair<std::vector<long double>, std::vector<long double>>& gauss_legendre_unit(int n) {
   thread_local std::map<int, std::pair<std::vector<long double>, std::vector<long double>>> cache;
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
-  std::vector<long double> x(static_cast<std::size_t>(n)), wt(static_cast<std::size_t>(n));
-  const long double pi = 3.141592653589793238462643383279502884L;
-  for (int i = 0; i < n; ++i) {
-    long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L)), dp = 0;
-    for (int iter = 0; iter < 100; ++iter) {
-      long double p0 = 1, p1 = t;
-      for (int k = 2; k <= n; ++k) {
-        const long double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1);
-      const long double step = p1 / dp;
-      t -= step;
-      if (std::abs(step) < 1e-19L) break;
-    }
-    x[i] = (1 - t) / 2;
-    wt[i] = 1 / ((1 - t * t) * dp * dp);  // 2/((1 − t²) P'²) halved for [0, 1]
+  quadrature::GaussLegendreRule rule = quadrature::gauss_legendre(n);
+  for (std::size_t i = 0; i < rule.x.size(); ++i) {
+    rule.x[i] = (1 - rule.x[i]) / 2;
+    rule.w[i] /= 2;
   }
-  return cache.emplace(n, std::make_pair(std::move(x), std::move(wt))).first->second;
+  return cache.emplace(n, std::make_pair(std::move(rule.x), std::move(rule.w))).first->second;
 }
 
 // Which of the three moments.
@@ -425,7 +362,7 @@ EdgeIntegrals<R> quadrature_edge_integrals(const WFrameArc<R>& f, const real::V3
 template <class R>
 Tracked<R> q1_moment(const SphericalRegion& region, const Vec3& v_in, int n, const Vec3& a_in, const Vec3& b_in,
                      const Vec3& w_in, Pattern pattern, const RationalMomentOptions& options, int points) {
-  const real::V3<R> w = unit<R>(w_in), v(v_in), a(a_in), b(b_in);
+  const real::V3<R> w = real::unit<R>(w_in), v(v_in), a(a_in), b(b_in);
   const R wv = dot(w, v), wa = dot(w, a), wb = dot(w, b);
   const real::V3<R> v_perp = v - wv * w, a_perp = a - wa * w, b_perp = b - wb * w;
   const bool want_h2 = pattern == Pattern::n11;
@@ -492,7 +429,7 @@ RationalMoment q1_dispatch(const SphericalRegion& region, const Vec3& v, int n, 
     throw Error("semi-analytic rational moments need at least 2 quadrature points");
   const double scale = 1 / norm(w);
   auto run = [&](int points) {
-    return escalate(n + 2, [&](auto r) {
+    return escalate_tracked(n + 2, [&](auto r) {
       return q1_moment<decltype(r)>(region, v, n, a, b, w, pattern, options, points);
     });
   };
@@ -566,13 +503,13 @@ struct TensorEdge {
 template <class R>
 Tracked<R> tensor_moment(const SphericalRegion& region, const Vec3& w_in, const Vec3& a_in, const Vec3& b_in,
                          const Vec3* c_in) {
-  const real::V3<R> w = unit<R>(w_in), a(a_in), b(b_in);
+  const real::V3<R> w = real::unit<R>(w_in), a(a_in), b(b_in);
   Tracked<R> sum;
   for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
     const WFrameArc<R> f(arc, w);
     const GTable<R> G(f, 3, -1, 3);
     Tracked<R> eta_w = base_moment_edge(f);  // −(w·m) ∫ η ds
-    eta_w.v = -eta_w.v;
+    eta_w.value = -eta_w.value;
     const TensorEdge<R> e{f, G, w, eta_w};
     if (!c_in) {
       sum += e.m3(a, b);
@@ -586,7 +523,7 @@ Tracked<R> tensor_moment(const SphericalRegion& region, const Vec3& w_in, const 
     sum -= (dot(c, a) * dot(b, m) + dot(c, b) * dot(a, m)) * e.theta();
     sum -= (R(2) * dot(c, m)) * e.product({a, b}, 0);
   });
-  return Tracked<R>{sum.v / 2, sum.m / 2};
+  return Tracked<R>{sum.value / 2, sum.magnitude / 2};
 }
 
 }  // namespace
@@ -595,7 +532,7 @@ RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3&
   check_side(region, w);
   if (!is_finite(a) || !is_finite(b)) throw Error("factor axes must be finite");
   RationalMoment m =
-      escalate(2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); });
+      escalate_tracked(2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); });
   m.value /= norm(w);
   return m;
 }
@@ -604,7 +541,7 @@ RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Ve
                                          const Vec3& c) {
   check_side(region, w);
   if (!is_finite(a) || !is_finite(b) || !is_finite(c)) throw Error("factor axes must be finite");
-  RationalMoment m = escalate(3, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, &c); });
+  RationalMoment m = escalate_tracked(3, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, &c); });
   m.value /= norm(w) * norm(w);
   return m;
 }

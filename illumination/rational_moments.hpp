@@ -18,13 +18,15 @@
 
 #include "geometry/spherical_region.hpp"
 #include "illumination/factor_moment.hpp"
+#include "illumination/precision_escalation.hpp"
 
 namespace daylit {
 
-struct RationalMoment {
-  double value;
-  double relative_error;  // (10 + order)·u·κ in the precision that was used (see above)
-};
+// value; relative_error, (10 + order)·u·κ in the precision that was used (see above); precision,
+// the one it settled in (0 double, 1 long double, 2 __float128); condition, κ of the double pass,
+// which measures how much the recurrences amplified rounding (bench rational reports it against
+// the degree).
+using RationalMoment = Escalated<double>;
 
 // τ^{0;1} = ∫_A dσ/(w·u) (Chen and Arvo 2000, eq. 28): −Σ_edges (w·m) ∫_arc log(w·u)/(1 − (w·u)²) ds,
 // each arc integral Λ(c, s1) − Λ(c, s0) in the arc's frame (eq. 33) through Cl2 (eq. 36,
@@ -54,7 +56,8 @@ RationalMoment frame_polynomial_moment(const SphericalRegion& region, const Vec3
                                        const std::vector<FrameMonomial>& terms,
                                        std::vector<double>* term_values = nullptr);
 
-// A unit frame (e1, e2, ŵ) completing ŵ = w/|w|, right-handed.
+// A unit frame (e1, e2, ŵ) completing ŵ = w/|w|, right-handed (Duff et al.'s basis,
+// orthonormal_basis.hpp).
 struct AxisFrame {
   Vec3 e1, e2, w;
 };
@@ -110,14 +113,5 @@ RationalMoment rational_moment_n11(const SphericalRegion& region, const Vec3& v,
 RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b);
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
                                          const Vec3& c);
-
-// What the last call on this thread needed: the precision it settled in (0 double, 1 long
-// double, 2 __float128) and κ = magnitude/|value| of its double pass, which measures how much the
-// recurrences amplified rounding (bench rational reports it against the degree).
-struct RationalDiagnostics {
-  int precision = 0;
-  double double_condition = 1;
-};
-RationalDiagnostics last_rational_diagnostics() noexcept;
 
 }  // namespace daylit

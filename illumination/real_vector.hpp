@@ -8,9 +8,13 @@
 
 #include "geometry/vec3.hpp"
 
-// DAYLIT_HAS_FLOAT128 comes from the build (CMake option DAYLIT_FLOAT128), never from sniffing
-// the compiler: a target that uses it links libquadmath.
-#ifdef DAYLIT_HAS_FLOAT128
+// DAYLIT_HAVE_FLOAT128 (1 or 0): whether the kernels have a __float128 rung. It comes from the
+// build (CMake option DAYLIT_FLOAT128, which also links libquadmath), never from sniffing the
+// compiler.
+#ifndef DAYLIT_HAVE_FLOAT128
+#error "DAYLIT_HAVE_FLOAT128 is set by the build (CMake option DAYLIT_FLOAT128)"
+#endif
+#if DAYLIT_HAVE_FLOAT128
 #include <quadmath.h>
 #endif
 
@@ -27,7 +31,7 @@ using std::log1p;
 using std::round;
 using std::sin;
 using std::sqrt;
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 using quad = __float128;
 inline quad abs(quad x) { return fabsq(x); }
 inline quad atan2(quad y, quad x) { return atan2q(y, x); }
@@ -44,7 +48,7 @@ template <class R>
 R pi() {
   return R(3.14159265358979323846264338327950288L);
 }
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 template <>
 inline quad pi<quad>() {
   static const quad value = 4 * atanq(quad(1));  // M_PIq needs GNU literal suffixes
@@ -57,7 +61,7 @@ template <class R>
 constexpr R unit_roundoff() {
   return std::numeric_limits<R>::epsilon() / 2;
 }
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
 template <>
 inline quad unit_roundoff<quad>() {
   return quad(0x1p-113L);  // exact: 2^-113 is a long double
@@ -97,6 +101,13 @@ template <class R> R norm(const V3<R>& a) {
   if (!(m > 0)) return R(0);
   const V3<R> s = a / m;
   return m * sqrt(dot(s, s));
+}
+
+// v/|v| formed in R from a double vector (non-zero).
+template <class R>
+V3<R> unit(const Vec3& v) {
+  const V3<R> r(v);
+  return r / norm(r);
 }
 
 }  // namespace daylit::real

@@ -98,7 +98,7 @@ double I_hemi_sub_phong(double omega, double sigma, int n);
 // Polygonal source (eq. 25): (n + 1)/(2π) ∫ (R·u)^n dΩ over the region cut to the hemisphere about
 // R (clip_to_hemisphere), by Arvo's axial moment (eq. 11, with its complementary form far off the
 // axis: axial_moment() in moments.hpp), even n included (its τ^0 is the solid angle). R need not
-// be a unit vector. Accuracy as axial_moment(); its estimate is in last_moment_accuracy().
+// be a unit vector. Accuracy as axial_moment(), whose estimate axial_moment_with_accuracy() returns.
 double I_poly_phong(const SphericalRegion& region, const Vec3& R, int n);
 
 // ---- Spherical luminaires (Snyder eq. 7) --------------------------------------------------------

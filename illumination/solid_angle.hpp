@@ -3,6 +3,7 @@
 
 #include "geometry/spherical_region.hpp"
 #include "illumination/real_vector.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -43,6 +44,15 @@ void for_each_solid_angle_term(const DirectionLoop& loop, Add&& add) {
     const R denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
     add(R(2) * real::atan2(numerator, denominator));
   }
+}
+
+// σ(A) in precision R with the magnitude of its fan terms (tracked_sum.hpp), for the kernels
+// that measure their cancellation.
+template <class R>
+real::Tracked<R> solid_angle_tracked(const SphericalRegion& region) {
+  real::Tracked<R> sum;
+  for (const auto& loop : region.loops) for_each_solid_angle_term<R>(loop, [&](R term) { sum.add(term); });
+  return sum;
 }
 
 }  // namespace daylit

@@ -398,8 +398,9 @@ json answer_irradiance(const json& q) {
   if (exitance.size() == 1 && exitance[0].i + exitance[0].j + exitance[0].k == 0) {
     // Uniform: Lambert's formula, and the boundary term of the gradient in closed form.
     const double M = exitance[0].coef;
-    value = M * lambert(region, n) / M_PI;
-    relative_error = last_moment_accuracy().relative_error;
+    const Escalated<double> E = lambert_with_accuracy(region, n);
+    value = M * E.value / M_PI;
+    relative_error = E.relative_error;
     if (gradient) {
       DirectionalRadiance L;
       L.alpha = M / M_PI;

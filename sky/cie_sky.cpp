@@ -92,6 +92,12 @@ double CieSky::relative_luminance(const Vec3& u) const {
   return gradation(u.z) * indicatrix(chi) / (gradation(1.0) * indicatrix(zenith_of_sun));
 }
 
+double CieSky::max_relative_luminance() const {
+  double m = relative_luminance(sun);
+  for (const Vec3& u : hemisphere_directions(40000)) m = std::max(m, relative_luminance(u));
+  return m;
+}
+
 Vec3 sun_direction(double zenith_deg, double azimuth_deg) {
   const double z = zenith_deg * pi / 180, a = azimuth_deg * pi / 180;
   return {std::sin(z) * std::sin(a), std::sin(z) * std::cos(a), std::cos(z)};

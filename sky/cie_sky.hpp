@@ -25,6 +25,9 @@ struct CieSky {
   CieSky(int type, const Vec3& sun);
   // L/L_z for a unit direction above the horizon (0 below it).
   double relative_luminance(const Vec3& u) const;
+  // The largest L/L_z over the sky: the larger of the sun's direction (the circumsolar peak) and
+  // 40,000 directions spread over the hemisphere (a bound on what a left-out obstruction hides).
+  double max_relative_luminance() const;
 };
 
 // The sun's unit vector from its zenith angle and azimuth (degrees, clockwise from north).

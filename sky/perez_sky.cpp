@@ -135,11 +135,7 @@ PerezCondition perez_condition(const PerezConditionInput& in, PerezClamps clamps
   const auto& kb = kDirectEfficacy[p.bin - 1];
   p.diffuse_efficacy = kd[0] + kd[1] * W + kd[2] * std::cos(Z) + kd[3] * std::log(p.brightness);
   p.direct_efficacy = kb[0] + kb[1] * W + kb[2] * std::exp(5.73 * Z - 5) + kb[3] * p.brightness;
-  if (p.direct_efficacy < 0) {
-    if (clamps == PerezClamps::none)
-      throw Error(fmt::format("the direct luminous efficacy of Perez 1990 (eq. 8) is negative ({:.4g} lm/W) for ε = {:.4g}, "
-                              "Δ = {:.4g}, Z = {:.4g}°; give the direct normal illuminance, or use --perez-clamps radiance",
-                              p.direct_efficacy, p.clearness, p.brightness, zenith_deg));
+  if (p.direct_efficacy < 0 && clamps == PerezClamps::radiance) {
     p.clamps_applied.push_back(fmt::format("direct efficacy {:.4g} lm/W raised to 0 (gendaylit)", p.direct_efficacy));
     p.direct_efficacy = 0;
   }
@@ -203,6 +199,17 @@ double PerezSky::luminance_function(const Vec3& u) const noexcept {
   return clamps_ == PerezClamps::radiance ? std::max(lv, 0.0) : lv;
 }
 
+double PerezSky::max_relative_luminance() const {
+  double m = relative_luminance(sun_);
+  constexpr int kCount = 40000;
+  const double golden = pi * (3 - std::sqrt(5.0));  // a Fibonacci lattice: equal solid angles
+  for (int i = 0; i < kCount; ++i) {
+    const double z = 1 - (i + 0.5) / kCount, r = std::sqrt(1 - z * z);
+    m = std::max(m, relative_luminance({r * std::cos(golden * i), r * std::sin(golden * i), z}));
+  }
+  return m;
+}
+
 double PerezSky::radiance_145_point_integral() const {
   constexpr int kRows[7] = {30, 30, 24, 24, 18, 12, 6};
   // defangle.dat's azimuths are counted from the sun's (gendaylit takes cos γ from them so).
@@ -258,6 +265,11 @@ PerezHour perez_hour(const PerezHourInput& in) {
     throw Error("the Perez sky needs the diffuse horizontal and direct normal irradiance (W/m²), or both illuminances (lux)");
   }
   const PerezCondition condition = perez_condition(c, in.clamps);
+  if (!in.direct_normal_illuminance && c.direct_normal_irradiance > 0 && condition.direct_efficacy < 0)
+    throw Error(fmt::format("the direct luminous efficacy of Perez 1990 (eq. 8) is negative ({:.4g} lm/W) for ε = {:.4g}, "
+                            "Δ = {:.4g}, Z = {:.4g}°; give the direct normal illuminance, or use --perez-clamps radiance",
+                            condition.direct_efficacy, condition.clearness, condition.brightness,
+                            condition.sun_zenith_used_deg));
   PerezHour h{PerezSky(condition, in.sun, in.clamps)};
   h.diffuse_horizontal_irradiance = c.diffuse_horizontal_irradiance;
   h.direct_normal_irradiance = c.direct_normal_irradiance;

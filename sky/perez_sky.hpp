@@ -75,8 +75,9 @@ struct PerezCondition {
   std::vector<std::string> clamps_applied;           // one line per clamp that changed something
 };
 
-// Throws daylit::Error for E_dh ≤ 0, E_dn < 0, Z outside [0°, 90°) or non-finite input; under
-// PerezClamps::none also for a negative direct efficacy.
+// Throws daylit::Error for E_dh ≤ 0, E_dn < 0, Z outside [0°, 90°) or non-finite input. The
+// direct efficacy of eq. 8 turns negative for low suns (the c·exp(5.73 Z − 5) term): it is
+// returned as it is under PerezClamps::none (perez_hour refuses it only where it is needed).
 PerezCondition perez_condition(const PerezConditionInput& input, PerezClamps clamps);
 
 // The sky's luminance for one condition and sun: lv(u) = (1 + a e^{b/cos θ}) (1 + c e^{dγ} + e cos²γ)
@@ -99,6 +100,9 @@ class PerezSky {
   double luminance_function(const Vec3& u) const noexcept;
   // lv(u)/lv(zenith): the luminance relative to the zenith, as the CIE skies give it.
   double relative_luminance(const Vec3& u) const noexcept { return luminance_function(u) / zenith_value_; }
+  // The largest L/L_z over the sky: the larger of the sun's direction (the circumsolar peak) and
+  // 40,000 directions spread evenly over the hemisphere (a bound on what a left-out obstruction hides).
+  double max_relative_luminance() const;
   // N = ∫ lv(u) cos θ dσ over the upper hemisphere (sr), by adaptive cubature to 1e-12 relative.
   double horizontal_integral() const noexcept { return horizontal_integral_; }
   // E_out / L_z = N / lv(zenith): multiply by the zenith luminance to get E_dh.
@@ -144,8 +148,9 @@ struct PerezHour {
   bool diffuse_lux_from_efficacy = false, direct_lux_from_efficacy = false, dew_point_assumed = false;
   int iterations = 0;  // of the illuminance-to-irradiance iteration (0 when irradiances were given)
 };
-// Throws daylit::Error as perez_condition and PerezSky do, and when neither the irradiances nor
-// the illuminances are given, or the iteration meets a zero efficacy.
+// Throws daylit::Error as perez_condition and PerezSky do, when neither the irradiances nor the
+// illuminances are given, when the direct illuminance must come from a negative efficacy (under
+// PerezClamps::none, with E_dn > 0), or when the iteration meets a zero efficacy.
 PerezHour perez_hour(const PerezHourInput& input);
 
 }  // namespace daylit

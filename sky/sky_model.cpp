@@ -1,11 +1,27 @@
 #include "sky/sky_model.hpp"
 
+#include <algorithm>
 #include <numbers>
+#include <string>
 
 #include "geometry/error.hpp"
 #include "illumination/moments.hpp"
 
 namespace daylit {
+
+SkyName parse_sky_name(std::string_view name) {
+  if (name == "uniform") return {SkyName::Kind::uniform, 0};
+  if (name == "cie-overcast") return {SkyName::Kind::cie_overcast, 0};
+  if (name == "perez") return {SkyName::Kind::perez, 0};
+  if (name.substr(0, 4) == "cie-") {
+    const std::string_view n = name.substr(4);
+    if (!n.empty() && n.size() <= 2 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      const int type = std::stoi(std::string(n));
+      if (type >= 1 && type <= 15) return {SkyName::Kind::cie_general, type};
+    }
+  }
+  throw Error("unknown sky '" + std::string(name) + "': use uniform, cie-overcast, cie-1 … cie-15 (ISO 15469 types) or perez");
+}
 
 SkyModel parse_sky_model(std::string_view name) {
   if (name == "cie-overcast") return SkyModel::cie_overcast;

@@ -15,7 +15,19 @@ enum class SkyModel {
   uniform,       // L(u) = L
 };
 
-// Parses "cie-overcast" or "uniform"; throws daylit::Error otherwise.
+// A sky named on the command line: "uniform", "cie-overcast", "cie-1" … "cie-15" (the CIE
+// standard general skies of ISO 15469, sky/cie_sky.hpp, which need the sun's position), or "perez"
+// (the Perez all-weather sky, sky/perez_sky.hpp, which needs an hour's weather and the sun).
+struct SkyName {
+  enum class Kind { uniform, cie_overcast, cie_general, perez };
+  Kind kind = Kind::cie_overcast;
+  int cie_type = 0;  // 1..15 for cie_general
+};
+// The one parser of sky names; throws daylit::Error naming the choices for anything else.
+SkyName parse_sky_name(std::string_view name);
+
+// Parses "cie-overcast" or "uniform" (the polynomial skies of this header); throws daylit::Error
+// otherwise, saying that a general sky needs `daylit illuminance`.
 SkyModel parse_sky_model(std::string_view name);
 std::string_view sky_model_name(SkyModel sky) noexcept;
 

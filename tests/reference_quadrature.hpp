@@ -1,14 +1,16 @@
 #pragma once
 // Independent references for the tests: tensor-product Gauss–Legendre quadrature in long double
-// over planar rectangles, integrating over area (not over the sphere), so that it shares no code
-// and no formula with the kernels under test.
+// over planar rectangles, integrating over area (not over the sphere), so that it shares no
+// formula with the kernels under test; only the 1-D rule is the library's (tested on its own).
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "geometry/vec3.hpp"
+#include "illumination/gauss_legendre.hpp"
 
 namespace daylit::test {
 
@@ -16,29 +18,13 @@ struct LVec3 {
   long double x, y, z;
 };
 
-// Nodes and weights of the n-point Gauss–Legendre rule on [−1, 1], by Newton's method on P_n.
+// Nodes and weights of the n-point Gauss–Legendre rule on [−1, 1]: the library's one rule
+// (illumination/gauss_legendre.hpp), itself checked against closed forms and exact polynomial
+// integrals in test_quadrature_rules.cpp.
 inline void gauss_legendre(int n, std::vector<long double>& x, std::vector<long double>& w) {
-  x.assign(n, 0);
-  w.assign(n, 0);
-  const long double pi = 3.141592653589793238462643383279502884L;
-  for (int i = 0; i < n; ++i) {
-    long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L));
-    long double dp = 0;
-    for (int iter = 0; iter < 100; ++iter) {
-      long double p0 = 1, p1 = t;
-      for (int k = 2; k <= n; ++k) {
-        const long double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1);
-      const long double step = p1 / dp;
-      t -= step;
-      if (std::abs(step) < 1e-20L) break;
-    }
-    x[i] = t;
-    w[i] = 2 / ((1 - t * t) * dp * dp);
-  }
+  quadrature::GaussLegendreRule rule = quadrature::gauss_legendre(n);
+  x = std::move(rule.x);
+  w = std::move(rule.w);
 }
 
 // ∫ over the parallelogram origin + s·e1 + t·e2 (s, t ∈ [0, 1]) of f(x) dA, split into

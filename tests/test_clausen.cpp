@@ -43,7 +43,7 @@ class MpfrClausen {
     evaluate(x);
     return mpfr_get_ld(sum_, MPFR_RNDN);
   }
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
   // The same to ~128 bits, as the sum of two long doubles converted to __float128.
   real::quad quad(double x) {
     evaluate(x);
@@ -150,7 +150,7 @@ TEST_CASE("the long double and __float128 series of Cl2 agree with MPFR to a few
     // Scale max(|x log|x||, 1): the series' head x − x log|x| carries that magnitude.
     const long double scale = std::max(1.0L, std::abs((long double)x * std::log(std::abs((long double)x) + 1e-300L)));
     worst_ld = std::max(worst_ld, double(std::abs(clausen((long double)x) - exact) / scale / 0x1p-64L));
-#ifdef DAYLIT_HAS_FLOAT128
+#if DAYLIT_HAVE_FLOAT128
     const real::quad eq = ref.quad(x);
     const real::quad got = clausen(real::quad(x));
     worst_q = std::max(worst_q, double(fabsq(got - eq) / real::quad(scale)) / 0x1p-113);

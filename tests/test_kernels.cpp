@@ -8,6 +8,7 @@
 #include "illumination/moments.hpp"
 #include "illumination/solid_angle.hpp"
 #include "reference_quadrature.hpp"
+#include "test_support.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;
@@ -24,7 +25,7 @@ SphericalRegion region_of(const std::vector<Vec3>& corners, const Vec3& p = {}) 
   return {{loop}};
 }
 
-double relative_error(double value, double reference) { return std::abs(value - reference) / std::abs(reference); }
+using daylit::test::relative_error;
 
 // Howell's configuration factors (SKY/DESIGN §7), evaluated in long double.
 long double parallel_rectangle_factor(long double a, long double b, long double c) {

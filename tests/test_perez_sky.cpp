@@ -280,6 +280,34 @@ TEST_CASE("Radiance's clamps change what they should and nothing else") {
     CHECK(std::atan2(b.sun().x, b.sun().y) * 180 / std::numbers::pi == Approx(120).epsilon(1e-12));
     CHECK(PerezSky(none, sun_at(2, 120), PerezClamps::none).sun().z == Approx(std::cos(2 * std::numbers::pi / 180)));
   }
+  SECTION("a negative direct efficacy (a low sun) is refused only where the direct illuminance must come from it") {
+    const PerezCondition none = perez_condition(input(30, 5, 85), PerezClamps::none);
+    REQUIRE(none.bin == 1);
+    REQUIRE(none.direct_efficacy < 0);
+    CHECK(none.clamps_applied.empty());
+    const PerezCondition rad = perez_condition(input(30, 5, 85), PerezClamps::radiance);
+    CHECK(rad.direct_efficacy == 0);
+    REQUIRE(rad.clamps_applied.size() == 1);
+    CHECK(rad.clamps_applied[0].find("direct efficacy") != std::string::npos);
+    CHECK(rad.a == none.a);  // nothing else moves
+    CHECK(rad.diffuse_efficacy == none.diffuse_efficacy);
+    PerezHourInput h;
+    h.diffuse_horizontal_irradiance = 30;
+    h.direct_normal_irradiance = 5;
+    h.dew_point_c = 5;
+    h.sun_zenith_deg = 85;
+    h.sun = sun_at(85, 100);
+    h.distance_au = std::sqrt(kSolarConstant / 1400);  // E_0 = 1400 W/m², as input() gives
+    CHECK_THROWS_WITH(perez_hour(h), Catch::Contains("direct luminous efficacy"));
+    h.direct_normal_illuminance = 400;
+    CHECK(perez_hour(h).direct_normal_lux == 400);
+    h.direct_normal_illuminance.reset();
+    h.clamps = PerezClamps::radiance;
+    CHECK(perez_hour(h).direct_normal_lux == 0);
+    h.direct_normal_irradiance = 0;  // no direct light: no efficacy needed
+    h.clamps = PerezClamps::none;
+    CHECK(perez_hour(h).direct_normal_lux == 0);
+  }
   SECTION("a gradation that diverges at the horizon (b > 0) is refused without clamps, finite with them") {
     const PerezCondition none = perez_condition(input(30, 21, 20), PerezClamps::none);
     REQUIRE(none.bin == 4);
@@ -305,4 +333,31 @@ TEST_CASE("the Perez condition refuses what it cannot use") {
   CHECK_THROWS_AS(perez_condition(input(NAN, 100, 30), PerezClamps::none), Error);
   CHECK(parse_perez_clamps("radiance") == PerezClamps::radiance);
   CHECK_THROWS_AS(parse_perez_clamps("gendaylit"), Error);
+}
+
+TEST_CASE("illuminances alone give back the irradiances whose efficacies made them (the .wea-in-lux path)") {
+  for (const Case& k : kCases) {
+    INFO("bin " << k.bin);
+    PerezHourInput h;
+    h.diffuse_horizontal_irradiance = k.Ed;
+    h.direct_normal_irradiance = k.I;
+    h.dew_point_c = 5;
+    h.sun_zenith_deg = k.zenith_deg;
+    h.sun = sun_at(k.zenith_deg, k.azimuth_deg);
+    const PerezHour forward = perez_hour(h);
+    CHECK(forward.iterations == 0);
+    CHECK(forward.diffuse_lux_from_efficacy);
+    PerezHourInput back = h;
+    back.diffuse_horizontal_irradiance.reset();
+    back.direct_normal_irradiance.reset();
+    back.diffuse_horizontal_illuminance = forward.diffuse_horizontal_lux;
+    back.direct_normal_illuminance = forward.direct_normal_lux;
+    const PerezHour inverse = perez_hour(back);
+    // A fixed point of E = lux / efficacy(ε(E), Δ(E)), iterated to 1e-9 relative.
+    CHECK(inverse.iterations > 0);
+    CHECK(inverse.iterations < 100);
+    CHECK(inverse.diffuse_horizontal_irradiance == Approx(k.Ed).epsilon(1e-8));
+    CHECK(inverse.direct_normal_irradiance == Approx(k.I).epsilon(1e-8).margin(1e-9));
+    CHECK(inverse.sky.condition().bin == k.bin);
+  }
 }

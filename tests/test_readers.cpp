@@ -90,3 +90,31 @@ TEST_CASE("sensor grids are read, and bad grids are errors naming file and line"
   CHECK_THROWS_WITH(parse_sensor_grid("\n# only a comment\n", "g.pts"), Contains("g.pts") && Contains("empty"));
   CHECK_THROWS_WITH(read_sensor_grid("/nonexistent/g.pts"), Contains("cannot open"));
 }
+
+TEST_CASE("quoted words run to the matching quote, white space and '#' included, as Radiance reads them") {
+  const auto content = read(
+      "void plastic \"porsche #1\" 0 0 5 0.5 0.5 0.5 0 0\n"
+      "'porsche #1' polygon 'left\n door' 0 0 9 0 0 0 1 0 0 1 1 0\n");
+  REQUIRE(content.materials.count("porsche #1") == 1);
+  REQUIRE(content.polygons.size() == 1);
+  CHECK(content.polygons[0].polygon.material == "porsche #1");
+  CHECK(content.polygons[0].polygon.name == "left\n door");
+  CHECK(content.polygons[0].polygon.where.line == 2);
+  CHECK_THROWS_WITH(read("void plastic \"open 0 0 5 0.5 0.5 0.5 0 0\n"), Contains("scene.rad:1") && Contains("closing \""));
+  CHECK_THROWS_WITH(read("void plastic '' 0 0 5 0.5 0.5 0.5 0 0\n"), Contains("scene.rad:1") && Contains("empty quoted"));
+}
+
+TEST_CASE("a file that is not a scene description is named for what it is") {
+  CHECK_THROWS_WITH(read("#?RADIANCE\noconv scene.rad\nFORMAT=Radiance_octree\n\n"), Contains("scene.rad:1") && Contains("octree"));
+  CHECK_THROWS_WITH(read("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\n"), Contains("picture"));
+  CHECK_THROWS_WITH(read("# exported\nmtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), Contains("Wavefront OBJ") && Contains("obj2rad"));
+  std::string binary(256, '\0');
+  for (std::size_t i = 0; i < binary.size(); ++i) binary[i] = char((i * 37) % 32);
+  CHECK_THROWS_WITH(read(binary), Contains("scene.rad:1") && Contains("binary"));
+}
+
+TEST_CASE("a command line names the program to run first, and a sky generator is to be left out") {
+  CHECK_THROWS_WITH(read("\n!xform -n chair -t 1 0 0 chair.rad\n"),
+                    Contains("scene.rad:2") && Contains("'xform'") && Contains("chair.rad > out.rad"));
+  CHECK_THROWS_WITH(read("! gensky 6 21 12 +s\n"), Contains("generates a sky") && Contains("--sky"));
+}

@@ -12,6 +12,7 @@
 #include "test_scenes.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "simulation/sky_component.hpp"
+#include "test_support.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;
@@ -38,9 +39,7 @@ long double reference_sc(const Vec3& p, const Vec3& n, const LVec3& origin, cons
   return 100 * E / kEout;
 }
 
-double relative_error(double value, long double reference) {
-  return double(std::abs((long double)value - reference) / std::abs(reference));
-}
+using daylit::test::relative_error;
 
 }  // namespace
 

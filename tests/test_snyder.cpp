@@ -26,6 +26,7 @@
 #include "illumination/cap_moment.hpp"
 #include "illumination/snyder.hpp"
 #include "reference_quadrature.hpp"
+#include "test_support.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;
@@ -45,10 +46,7 @@ LD ipow(LD z, int n) {
   return result;
 }
 
-double relative_error(double value, LD reference) {
-  if (reference == 0) return std::abs(value);
-  return double(std::abs((LD(value) - reference) / reference));
-}
+using daylit::test::relative_error;
 
 // ---- Composite Gauss–Legendre in long double ---------------------------------------------------
 //

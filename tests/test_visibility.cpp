@@ -13,6 +13,7 @@
 #include "reference_quadrature.hpp"
 #include "test_scenes.hpp"
 #include "simulation/sky_component.hpp"
+#include "test_support.hpp"
 
 using namespace daylit;
 using daylit::test::LVec3;
@@ -59,9 +60,7 @@ void record(const char* what, double exact, double floating, long double referen
               ref != 0 ? std::abs(floating - ref) / ref : std::abs(floating));
 }
 
-double relative_error(double value, long double reference) {
-  return reference == 0 ? std::abs(value) : double(std::abs((long double)value - reference) / std::abs(reference));
-}
+using daylit::test::relative_error;
 
 // What a sensor at p (room side, y > 0) sees through the window with a reveal of depth d: the
 // window ∩ the projection of the outer opening (y = −d), which is the opening scaled by
