@@ -144,7 +144,7 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
       in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
     }
     in.dew_point_c = r.dew_point_c;
-    if (r.diffuse_horizontal_irradiance == 0.0 || r.diffuse_horizontal_illuminance == 0.0)
+    if (r.diffuse_horizontal_irradiance == 0.0 || (file.photometric && r.diffuse_horizontal_illuminance == 0.0))
       throw Error(fmt::format("{}:{}: the diffuse horizontal value of this hour is 0 with the sun up for {:.0f} min of it: "
                               "there is no sky to model (the Perez sky needs E_dh > 0)",
                               file.path, r.line, 60 * w.sun.up_fraction));
@@ -167,11 +167,12 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
                  {"missing_values",
                   {{"policy", fmt::format("records lacking direct normal or diffuse horizontal values are skipped and "
                                           "counted; more than {:g} % is refused; missing illuminances come from Perez's "
-                                          "efficacies, a missing dew point is 11 C",
+                                          "efficacies (so does 0 lux beside a positive irradiance), a missing dew point is 11 C",
                                           100 * kMaxMissingShare)},
                    {"unusable_records", file.unusable_records},
                    {"missing_dew_points", file.missing_dew_points},
-                   {"missing_illuminances", file.missing_illuminances}}}};
+                   {"missing_illuminances", file.missing_illuminances},
+                   {"zero_illuminances_taken_as_missing", file.zero_illuminances_taken_as_missing}}}};
   } else {
     p.sun = sun_position(opt, site);
     p.site_source = site ? "--site" : "none";

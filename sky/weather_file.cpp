@@ -215,6 +215,15 @@ WeatherFile parse_epw(std::string_view text, const std::string& name) {
       if (value && *value < 0) throw input_error(where, fmt::format("{} {:g} is negative", what, *value));
     if (r.ground_reflectance && (*r.ground_reflectance < 0 || *r.ground_reflectance > 1))
       throw input_error(where, fmt::format("albedo {:g} is outside [0, 1]", *r.ground_reflectance));
+    // TMY3 writes 0 lux where its illuminance model was not run (low suns) although the
+    // irradiance is positive (271 diffuse and 320 direct values in the Chicago O'Hare file): such
+    // a zero is no measurement, and is taken as missing.
+    for (auto [lux, irradiance] : {std::pair{&r.direct_normal_illuminance, r.direct_normal_irradiance},
+                                   std::pair{&r.diffuse_horizontal_illuminance, r.diffuse_horizontal_irradiance}})
+      if (*lux == 0.0 && irradiance > 0.0) {
+        lux->reset();
+        ++f.zero_illuminances_taken_as_missing;
+      }
     r.usable = r.direct_normal_irradiance && r.diffuse_horizontal_irradiance;
     f.unusable_records += !r.usable;
     f.missing_dew_points += !r.dew_point_c;

@@ -24,7 +24,8 @@
 // .wea in lux, illuminance) is missing is kept but marked unusable, and counted; a file in which
 // more than kMaxMissingShare of the records are unusable is refused. Missing illuminances fall back
 // to Perez's luminous efficacies, a missing dew point to 11 °C (gendaymtx's default), a missing
-// albedo to none given: each user of the file says which it did.
+// albedo to none given: each user of the file says which it did. An EPW illuminance of 0 beside
+// a positive irradiance is taken as missing too (TMY3's low-sun hours).
 
 #include <optional>
 #include <string>
@@ -72,7 +73,10 @@ struct WeatherFile {
   std::optional<bool> leap_year_observed;  // EPW header
   std::vector<WeatherRecord> records;
   std::size_t unusable_records = 0;    // missing direct or diffuse (see the policy above)
-  std::size_t missing_dew_points = 0, missing_illuminances = 0;
+  std::size_t missing_dew_points = 0, missing_illuminances = 0;  // records lacking either (codes or zeros below)
+  // EPW: illuminances of 0 lux beside a positive irradiance, taken as missing (TMY3 writes 0 where
+  // its illuminance model was not run).
+  std::size_t zero_illuminances_taken_as_missing = 0;
 };
 
 // Parse the text of an EPW or .wea file; `name` is used in messages (file:line: problem). Throws

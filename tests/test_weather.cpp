@@ -78,6 +78,14 @@ TEST_CASE("a real EPW is read field by field (Chicago O'Hare TMY3, 1-3 January)"
   CHECK(*found->direct_normal_irradiance == 151);
   CHECK(*found->diffuse_horizontal_illuminance == 18939);
   CHECK(find_record(f, 1, 4, 1) == nullptr);
+  // 1/1 hour 17 (line 25): E_dh 5 W/m² beside 0 lux, a TMY3 low-sun hour: the zero is no
+  // measurement and is taken as missing; five such values in these 72 hours (counted by awk).
+  const WeatherRecord* dusk = find_record(f, 1, 1, 17);
+  REQUIRE(dusk);
+  CHECK(*dusk->diffuse_horizontal_irradiance == 5);
+  CHECK(!dusk->diffuse_horizontal_illuminance);
+  CHECK(*dusk->direct_normal_illuminance == 0);  // beside E_dn = 0: a true zero
+  CHECK(f.zero_illuminances_taken_as_missing == 5);
   CHECK(f.records.back().day == 3);
   CHECK(f.records.back().hour == 24);
 }
