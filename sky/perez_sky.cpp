@@ -156,28 +156,36 @@ PerezSky::PerezSky(const PerezCondition& condition, const Vec3& sun, PerezClamps
     sun_ = std::cos(kMaxAltitudeRadianceDeg * kDegree) * horizontal + Vec3{0, 0, max_z};
   }
   const PerezCondition& p = condition_;
-  if (clamps == PerezClamps::none) {
-    // The gradation 1 + a e^{b/t}, t = cos θ ∈ (0, 1], is monotone in t: its extremes are at the
-    // zenith and at the horizon (limit 1 for b < 0, 1 + a for b = 0, ±∞ for b > 0).
-    auto refuse = [&](const std::string& why) {
+  // Where the published formula is no luminance: refused without clamps; with Radiance's, named
+  // (clamps 4 and 5 of the header act there).
+  const bool none = clamps == PerezClamps::none;
+  auto problem = [&](const std::string& why, const std::string& radiance_note) {
+    if (none)
       throw Error(fmt::format("the published Perez sky is not a luminance for this hour ({}; ε = {:.4g}, Δ = {:.4g}, "
                               "Z = {:.3f}°, a = {:.4g}, b = {:.4g}, c = {:.4g}, d = {:.4g}, e = {:.4g}); "
                               "--perez-clamps radiance applies Radiance's limits",
                               why, p.clearness, p.brightness, p.sun_zenith_used_deg, p.a, p.b, p.c, p.d, p.e));
-    };
-    if (p.b > 0 && p.a != 0) refuse("the gradation 1 + a·exp(b/cos θ) diverges at the horizon: b > 0");
-    const double at_horizon = p.b < 0 ? 1 : 1 + p.a;
-    if (std::min(1 + p.a * std::exp(p.b), at_horizon) < 0) refuse("the gradation is negative");
-    // The indicatrix 1 + c e^{dγ} + e cos²γ over the angles from the sun that the sky holds,
-    // γ ∈ [0, Z + 90°], sampled every 0.05° (its minimum is smooth: the sampling misses at most
-    // O(h²) of it, far below the values that matter).
-    const double gamma_max = std::min(pi, std::acos(std::clamp(sun_.z, -1.0, 1.0)) + pi / 2);
-    constexpr int kSamples = 3600;
-    for (int i = 0; i <= kSamples; ++i) {
-      const double g = gamma_max * i / kSamples;
-      if (1 + p.c * std::exp(p.d * g) + p.e * std::cos(g) * std::cos(g) < 0) refuse("the indicatrix is negative");
-    }
+    condition_.clamps_applied.push_back(radiance_note);
+  };
+  // The gradation 1 + a e^{b/t}, t = cos θ, is monotone in t: its extremes are at the zenith and
+  // at the horizon (without clamps the limit t → 0: 1 for b < 0, 1 + a for b = 0, ±∞ for b > 0;
+  // with Radiance's, t = 0.01).
+  if (p.b > 0 && p.a != 0)
+    problem("the gradation 1 + a·exp(b/cos θ) diverges at the horizon: b > 0",
+            fmt::format("b = {:.4g} > 0: the gradation is held at cos θ = 0.01 near the horizon (perezlum.cal)", p.b));
+  const double at_horizon = none ? (p.b < 0 ? 1 : 1 + p.a) : 1 + p.a * std::exp(p.b / kMinCosRadiance);
+  bool negative = std::min(1 + p.a * std::exp(p.b), at_horizon) < 0;
+  // The indicatrix 1 + c e^{dγ} + e cos²γ over the angles from the sun that the sky holds,
+  // γ ∈ [0, Z + 90°], sampled every 0.05° (its minimum is smooth: the sampling misses at most
+  // O(h²) of it, far below the values that matter).
+  const double gamma_max = std::min(pi, std::acos(std::clamp(sun_.z, -1.0, 1.0)) + pi / 2);
+  constexpr int kSamples = 3600;
+  for (int i = 0; i <= kSamples && !negative; ++i) {
+    const double g = gamma_max * i / kSamples;
+    negative = 1 + p.c * std::exp(p.d * g) + p.e * std::cos(g) * std::cos(g) < 0;
   }
+  if (negative)
+    problem("the luminance is negative in part of the sky", "negative luminance in part of the sky set to 0 (gendaymtx)");
   zenith_value_ = luminance_function({0, 0, 1});
   if (!(zenith_value_ > 0)) throw Error("the Perez sky's zenith luminance is 0 for this hour (after the clamps)");
   horizontal_integral_ =

@@ -103,7 +103,11 @@ class PerezSky {
   // The largest L/L_z over the sky: the larger of the sun's direction (the circumsolar peak) and
   // 40,000 directions spread evenly over the hemisphere (a bound on what a left-out obstruction hides).
   double max_relative_luminance() const;
-  // N = ∫ lv(u) cos θ dσ over the upper hemisphere (sr), by adaptive cubature to 1e-12 relative.
+  // N = ∫ lv(u) cos θ dσ over the upper hemisphere (sr), by adaptive cubature to 1e-12 relative
+  // (measured 1e-13 to 4.5e-13 against Gauss–Legendre in long double); where Radiance's floor at 0
+  // acts, its kink runs across the cubature's triangles and the error is larger (2e-10 measured).
+  // The clamps that acted on this sky (b > 0 held at the horizon, negative luminance cut) are
+  // appended to condition().clamps_applied.
   double horizontal_integral() const noexcept { return horizontal_integral_; }
   // E_out / L_z = N / lv(zenith): multiply by the zenith luminance to get E_dh.
   double horizontal_irradiance_over_zenith() const noexcept { return horizontal_integral_ / zenith_value_; }
