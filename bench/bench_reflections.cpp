@@ -16,7 +16,8 @@
 // ERC and IRC apart, the RMS of the estimate's own standard error, the reference and its RMS
 // standard error. reflections_error_vs_time.png: normalised error against CPU time, per case at
 // B = 16, and the side-lit room also at B = 1, 2, 4 (truncation). reflections_reference.csv: the
-// references per sensor (components and standard errors), what the radiosity is checked against.
+// references per sensor (components and standard errors), what the radiosity is checked against;
+// reflections_reference_bounces.csv: the long runs' ERC and IRC per sensor and bounce.
 
 #include <tbb/task_arena.h>
 
@@ -63,6 +64,7 @@ struct Reference {
   std::vector<double> sc, erc, irc, sc_se, erc_se, irc_se, df, df_se;
   std::string description;
   double rms_standard_error = 0;  // RMS over sensors of the reference's σ of ERC + IRC
+  std::vector<PathTracedSensor> traced;  // the long run itself (empty for closed forms): per bounce
 };
 
 struct Row {
@@ -111,6 +113,7 @@ Reference reference_of(const ReflectionCase& c, const Settings& s) {
     se.push_back(t.erc.standard_error + t.irc.standard_error);
   }
   r.rms_standard_error = rms(se);
+  r.traced = traced;
   r.description = fmt::format("path tracer N={} B={} seed 1 (no closed form)", s.reference_samples, s.reference_bounces);
   return r;
 }
@@ -191,7 +194,8 @@ int run_bench_reflections(const BenchOptions& opt) {
   std::filesystem::create_directories(dir);
   StagedOutputs outputs;
   const std::string csv = (dir / "reflections_error_vs_time.csv").string(), png = (dir / "reflections_error_vs_time.png").string(),
-                    ref_csv = (dir / "reflections_reference.csv").string();
+                    ref_csv = (dir / "reflections_reference.csv").string(),
+                    bounces_csv = (dir / "reflections_reference_bounces.csv").string();
   {
     std::ofstream f(outputs.stage(csv));
     f << "case,method,samples,bounces,sensors,cpu_s_per_sensor,reflected_rms_error_percent,reflected_normalised_rms_error,"
@@ -214,6 +218,19 @@ int run_bench_reflections(const BenchOptions& opt) {
                          r.erc[i], r.erc_se[i], r.irc[i], r.irc_se[i], r.df[i], r.df_se[i], r.description);
       }
     if (!f) throw Error(ref_csv + ": cannot write");
+  }
+  {
+    // The long runs bounce by bounce: what a radiosity's Jacobi sweeps can be compared with.
+    std::ofstream f(outputs.stage(bounces_csv));
+    f << "case,index,bounce,erc_percent,erc_se,irc_percent,irc_se\n";
+    for (std::size_t k = 0; k < cases.size(); ++k)
+      for (std::size_t i = 0; i < references[k].traced.size(); ++i) {
+        const PathTracedSensor& t = references[k].traced[i];
+        for (std::size_t b = 0; b < t.irc_by_bounce.size(); ++b)
+          f << fmt::format("{},{},{},{:.6g},{:.2e},{:.6g},{:.2e}\n", cases[k].name, i, b, t.erc_by_bounce[b].value,
+                           t.erc_by_bounce[b].standard_error, t.irc_by_bounce[b].value, t.irc_by_bounce[b].standard_error);
+      }
+    if (!f) throw Error(bounces_csv + ": cannot write");
   }
   Plot plot;
   plot.title = "Reflected components (ERC + IRC): error against run time";
@@ -270,7 +287,8 @@ int run_bench_reflections(const BenchOptions& opt) {
                                cases[k].name, cases[k].sensors.size(), mean(r.sc), mean_se(r.sc_se), mean(r.erc), mean_se(r.erc_se),
                                mean(r.irc), mean_se(r.irc_se), mean(r.df), mean_se(r.df_se));
     }
-    std::cerr << fmt::format("bench reflections: wrote {}, {}, {} ({:.1f} s)\n", csv, png, ref_csv, bench::seconds_since(t_start));
+    std::cerr << fmt::format("bench reflections: wrote {}, {}, {}, {} ({:.1f} s)\n", csv, png, ref_csv, bounces_csv,
+                             bench::seconds_since(t_start));
   }
   return 0;
 }

@@ -294,7 +294,7 @@ std::size_t pick(const std::vector<double>& cumulative, double u) noexcept {
 struct Accumulator {
   double sum = 0, squares = 0;
   void add(double x) noexcept { sum += x, squares += x * x; }
-  Estimate estimate(long n, double scale) const noexcept {
+  TracedEstimate estimate(long n, double scale) const noexcept {
     const double mean = sum / double(n);
     const double variance = n > 1 ? std::max(0.0, (squares - sum * mean) / double(n - 1)) : 0.0;
     return {scale * mean, scale * std::sqrt(variance / double(n))};

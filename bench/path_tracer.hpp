@@ -62,16 +62,16 @@ struct PathTracerOptions {
 };
 
 // A Monte Carlo estimate in percent of E_out, with its standard error (same unit).
-struct Estimate {
+struct TracedEstimate {
   double value = 0;
   double standard_error = 0;
 };
 
 struct PathTracedSensor {
-  Estimate sc, erc, irc, df;  // df = sc + erc + irc, its standard error from the same paths
+  TracedEstimate sc, erc, irc, df;  // df = sc + erc + irc, its standard error from the same paths
   // Index k = 0 … B: the part reached after exactly k surface reflections (irc_by_bounce[0] = 0;
   // the sky component is bounce 0 only).
-  std::vector<Estimate> erc_by_bounce, irc_by_bounce;
+  std::vector<TracedEstimate> erc_by_bounce, irc_by_bounce;
 };
 
 // Path-traces every sensor (in parallel over sensors with oneTBB; each sensor's generator is seeded

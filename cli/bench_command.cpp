@@ -76,13 +76,14 @@ std::function<int()> add_bench_command(CLI::App& app) {
             "precision). Writes rational_special_functions.csv/.png, rational_moments_error_vs_time.csv/.png,\n"
             "rational_cost_per_edge.png and rational_luminaire_degree.csv. One core; --quick: a few seconds.",
             run_bench_rational);
-  add_suite("reflections", "Reflected components (ERC + IRC): path tracer at N paths and B bounces against exact references",
+  add_suite("reflections", "Reflected components (ERC + IRC): path tracer at N paths and B bounces against closed forms and long runs",
             "The Monte Carlo path tracer (next-event estimation through the apertures, MIS, seeded) at N = 16 ... 4096\n"
             "paths per sensor and B = 1 ... 16 bounces on four cases: a plate over upward sensors and a box with an\n"
             "open ceiling (closed forms from Howell's configuration factors), the office sample (every 30th sensor)\n"
             "and a 4 x 5 x 3 m side-lit room (80 sensors; both against a path-traced run at N = 65,536, B = 16,\n"
             "stated as such). CPU time per sensor on one thread. Writes reflections_error_vs_time.csv/.png and\n"
-            "reflections_reference.csv (the references per sensor), and prints the table and the rooms' grid means.\n"
+            "reflections_reference.csv and reflections_reference_bounces.csv (the references per sensor and bounce),\n"
+            "and prints the table and the rooms' grid means.\n"
             "About 2 minutes of CPU time (--quick: a few seconds).",
             run_bench_reflections);
   suites->back().command->add_option("--samples", suites->back().options->samples,

@@ -160,7 +160,7 @@ report=$(awk -F, 'NR > 1 {
 start=$SECONDS
 "$daylit" bench reflections --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench reflections: exit status $?"
 echo "bench reflections --quick: $((SECONDS - start)) s"
-for f in reflections_error_vs_time.csv reflections_error_vs_time.png reflections_reference.csv; do
+for f in reflections_error_vs_time.csv reflections_error_vs_time.png reflections_reference.csv reflections_reference_bounces.csv; do
   [ -s "$out/$f" ] || fail "$f missing or empty"
 done
 [ "$(head -c 8 "$out/reflections_error_vs_time.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "reflections plot not a PNG"

@@ -30,7 +30,7 @@ namespace rc = daylit::reflection_cases;
 namespace {
 
 // |estimate − exact| within 5σ (plus the reference's rounding).
-bool within(const Estimate& e, double exact) {
+bool within(const TracedEstimate& e, double exact) {
   return std::abs(e.value - exact) <= 5 * e.standard_error + 1e-9 * std::abs(exact);
 }
 
@@ -160,6 +160,16 @@ TEST_CASE("path tracer: a box with an open ceiling (IRC of downward sensors by H
     CHECK(r[i].irc.standard_error <= 0.02 * c.irc[i] + 1e-12);
     for (std::size_t k = 2; k < r[i].irc_by_bounce.size(); ++k) CHECK(r[i].irc_by_bounce[k].value == 0);
   }
+  // An opening of transmittance 0.6 scales every value by 0.6: the next-event rays and the
+  // continuations that leave through it both carry it.
+  rc::ReflectionCase dimmed = c;
+  dimmed.scene.apertures[0].transmittance = 0.6;
+  const auto d = path_trace(dimmed.scene, dimmed.sensors, options(16384, 3, c.sky, c.ground_reflectance, 8));
+  for (std::size_t i = 0; i < c.sensors.size(); ++i) {
+    INFO("sensor " << i << " behind tau = 0.6: SC " << d[i].sc.value << ", IRC " << d[i].irc.value << " ± " << d[i].irc.standard_error);
+    CHECK(within(d[i].sc, 0.6 * c.sc[i]));
+    CHECK(within(d[i].irc, 0.6 * c.irc[i]));
+  }
 }
 
 TEST_CASE("path tracer: flux balance of a box with a ceiling opening, bounce by bounce") {
@@ -214,14 +224,14 @@ TEST_CASE("path tracer: flux balance of a box with a ceiling opening, bounce by 
       sum += e, squares += e * e;
     }
     const double n = double(r.size()), mean = sum / n;
-    return Estimate{area * mean, area * std::sqrt((squares / n - mean * mean) / (n - 1))};
+    return TracedEstimate{area * mean, area * std::sqrt((squares / n - mean * mean) / (n - 1))};
   };
-  const Estimate phi0 = flux(rs, 0, a_surf);
+  const TracedEstimate phi0 = flux(rs, 0, a_surf);
   INFO("Phi_0 = " << phi0.value << " ± " << phi0.standard_error << ", exact " << std::numbers::pi * a_open);
   CHECK(within(phi0, std::numbers::pi * a_open));
   CHECK(phi0.standard_error < 0.03 * phi0.value);
   for (int k = 0; k < B; ++k) {
-    const Estimate phi = flux(rs, k, a_surf), next = flux(rs, k + 1, a_surf), out = flux(rl, k + 1, a_open);
+    const TracedEstimate phi = flux(rs, k, a_surf), next = flux(rs, k + 1, a_surf), out = flux(rl, k + 1, a_open);
     const double residual = rho * phi.value - next.value - out.value;
     const double sigma = rho * phi.standard_error + next.standard_error + out.standard_error;
     INFO("bounce " << k << ": rho Phi_k = " << rho * phi.value << ", Phi_k+1 = " << next.value << ", Lambda_k+1 = " << out.value
