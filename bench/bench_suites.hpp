@@ -14,7 +14,7 @@ struct BenchOptions {
   std::string out;
   bool quick = false;
   bool quiet = false;
-  std::string samples = "samples";  // `scenes`: the folder holding office/ and hall/
+  std::string samples = "samples";  // `scenes`, `skies`, `reflections`: the folder holding office/ and hall/
 };
 
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
@@ -29,6 +29,9 @@ int run_bench_skies(const BenchOptions& options);
 // `daylit bench rational`: Cl2 and Λ by GSL, Grosjean and a table; rational moments exact and
 // semi-analytic; polynomial luminaires by degree.
 int run_bench_rational(const BenchOptions& options);
+// `daylit bench reflections`: ERC + IRC by the path tracer (and, once it lands, the radiosity) on
+// closed-form cases and the samples' rooms.
+int run_bench_reflections(const BenchOptions& options);
 
 namespace bench {
 
