@@ -1,12 +1,11 @@
 #pragma once
 // What the suites of `daylit bench` share (cli/bench_command.cpp registers them): their options, entry
-// points, and small helpers for timing and progress.
+// points, and the progress line; their one timing scheme is bench/timing.hpp.
 
-#include <time.h>
-
-#include <chrono>
 #include <cstdio>
 #include <string>
+
+#include "bench/timing.hpp"
 
 namespace daylit::cli {
 
@@ -20,6 +19,10 @@ struct BenchOptions {
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
 // per edge.
 int run_bench_kernels(const BenchOptions& options);
+// `daylit bench pairs`: the cost per sensor–aperture pair in exact, float and rational geometry.
+int run_bench_pairs(const BenchOptions& options);
+// `daylit bench gradient`: the cost of irradiance gradients against the irradiance alone.
+int run_bench_gradient(const BenchOptions& options);
 // `daylit bench scenes`: error against run time on the bundled samples, and how run time grows.
 int run_bench_scenes(const BenchOptions& options);
 // `daylit bench stiff`: exact and float geometry against independent references on stiff scenes.
@@ -34,25 +37,6 @@ int run_bench_rational(const BenchOptions& options);
 int run_bench_reflections(const BenchOptions& options);
 
 namespace bench {
-
-using clock_type = std::chrono::steady_clock;
-
-inline double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
-
-// CPU time of the calling thread, and of the whole process (all threads), in seconds. On a
-// machine shared with other work they measure what a run costs better than the wall clock does:
-// a serial loop's thread CPU time is its wall time on an idle core, and a parallel run's process
-// CPU time over its thread count is, for work as evenly divisible as independent sensors, its
-// wall time on idle cores.
-inline double cpu_seconds(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-inline double thread_cpu_seconds() { return cpu_seconds(CLOCK_THREAD_CPUTIME_ID); }
-inline double process_cpu_seconds() { return cpu_seconds(CLOCK_PROCESS_CPUTIME_ID); }
 
 // Progress on stderr, one overwritten line, when enabled (a terminal and not --quiet).
 class StatusLine {

@@ -17,7 +17,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
   bench->footer(
       "Measures each approximate path beside the exact one on the same cases and writes the results as CSV\n"
       "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff, skies, rational,\n"
-      "reflections.");
+      "reflections, pairs, gradient. Every figure is CPU time, the best of several runs (bench/timing.hpp).");
   bench->require_subcommand(1);
 
   // Each suite: a subcommand with the common options and its runner (bench_suites.hpp).
@@ -90,6 +90,22 @@ std::function<int()> add_bench_command(CLI::App& app) {
             run_bench_reflections);
   suites->back().command->add_option("--samples", suites->back().options->samples,
                                      "Folder holding the bundled sample office/ (default: samples)");
+  add_suite("pairs", "Cost per sensor-aperture pair: exact, float and all-rational geometry",
+            "The sky component per sensor-aperture pair on the office and hall samples and on an unobstructed\n"
+            "window (the office's dense grid), one thread, in exact (certified intervals), float and rational\n"
+            "geometry (every 25th sensor), with the shares of pairs clipped and needing rationals. Writes pairs.csv\n"
+            "and prints the table. About a minute (--quick: every 10th sensor of the coarse grids).",
+            run_bench_pairs);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled samples office/ and hall/ (default: samples)");
+  add_suite("gradient", "Cost of irradiance gradients against the irradiance alone",
+            "On the office and hall samples' visible regions: the sky kernels against the gradient kernel, and df\n"
+            "against df --gradient per sensor (visibility included); a uniform and a linearly varying luminaire\n"
+            "behind an occluder (E against E and its gradient). One thread, best of 5 alternating runs. Writes\n"
+            "gradient.csv and prints the table (--quick: 100 sensors per sample).",
+            run_bench_gradient);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled samples office/ and hall/ (default: samples)");
   return [suites] {
     for (const Suite& s : *suites)
       if (s.command->parsed()) return s.run(*s.options);

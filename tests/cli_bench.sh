@@ -2,7 +2,7 @@
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
 # Then `bench scenes --quick`, `bench stiff --quick`, `bench skies --quick`, `bench rational --quick`
-# and `bench reflections --quick` (below).
+# `bench reflections --quick`, `bench pairs --quick` and `bench gradient --quick` (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -196,6 +196,23 @@ report=$(awk -F, 'NR > 1 {
   }
   END { if (n != 34) print n " reference rows (expected 34)" }' "$out/reflections_reference.csv")
 [ -z "$report" ] || fail "$report"
+
+# `daylit bench pairs --quick`: a row per case and mode, exact and float agree on the pairs counted,
+# the rational reference needs rationals everywhere and nothing else does on these samples.
+start=$SECONDS
+"$daylit" bench pairs --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench pairs: exit status $?"
+echo "bench pairs --quick: $((SECONDS - start)) s"
+[ "$(head -n 1 "$out/pairs.csv")" = "case,mode,pairs,us_per_pair,share_clipped,share_rational" ] || fail "pairs.csv header"
+report=$(awk -F, 'NR > 1 { rows++; if (!($4 > 0)) print "no time: " $0
+    if ($2 == "rational" && $6 != 1) print "rational mode without rationals: " $0
+    if ($2 != "rational" && $6 != 0) print "rationals needed: " $0 }
+  END { if (rows != 9) print rows " rows (expected 9)" }' "$out/pairs.csv")
+[ -z "$report" ] || fail "bench pairs: $report"
+
+# `daylit bench gradient --quick`: six rows, each with two positive times.
+"$daylit" bench gradient --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench gradient: exit status $?"
+report=$(awk -F, 'NR > 1 { rows++; if (!($(NF-2) > 0 && $(NF-1) > 0)) print "no time: " $0 } END { if (rows != 6) print rows " rows (expected 6)" }' "$out/gradient.csv")
+[ -z "$report" ] || fail "bench gradient: $report"
 
 echo "$failures failures"
 [ "$failures" -eq 0 ]
