@@ -2,9 +2,8 @@
 // tolerances, and two Monte Carlo estimators at N = 16 … 65,536 samples, each timed and compared
 // with a reference; and the cost per polygon edge of the axial moment as the order grows.
 //
-// Timing: a measurement runs batches of evaluations (each batch ≥ 1/min_batches of the target, so
-// that the clock's resolution does not matter) until both the target total time and the minimum
-// number of batches are reached, and reports the median batch time per evaluation, on one core.
+// Timing: bench/timing.hpp's one scheme (thread CPU time per evaluation, the best of batches of
+// evaluations sized against the target), on one core.
 // Reference: the moment by Arvo's eqs. 11 and 14 on the same double directions, evaluated in
 // __float128 (long double where the compiler lacks it), with an error estimate from the
 // magnitudes of its terms that is reported beside it; the kernels' own accuracy is measured
@@ -46,9 +45,8 @@ namespace daylit::cli {
 
 namespace {
 
-using clock_type = std::chrono::steady_clock;
-
-double seconds_since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+using bench::clock_type;
+using bench::seconds_since;
 
 // What a run measures: --quick trims every list and the timing target, not the method set.
 struct KernelSuiteSettings {
@@ -66,32 +64,7 @@ KernelSuiteSettings settings_for(bool quick) {
           {4, 16, 64}, {1, 10, 100, 1000, 10000}};
 }
 
-// ── Timing ──────────────────────────────────────────────────────────────────────────────────
-
-volatile double timing_sink;  // keeps the evaluations from being optimised away
-
-// Median seconds per call of f(repetition) (f returns a double), as described at the top.
-template <class F>
-double seconds_per_evaluation(F&& f, const KernelSuiteSettings& s) {
-  auto t0 = clock_type::now();
-  timing_sink = f(0);  // warm-up, and a first estimate
-  const double single = std::max(seconds_since(t0), 1e-9);
-  const long batch = std::max(1L, long(s.target_seconds / s.min_batches / single));
-  std::vector<double> per_evaluation;
-  double total = 0;
-  long repetition = 1;
-  while (int(per_evaluation.size()) < s.min_batches || total < s.target_seconds) {
-    t0 = clock_type::now();
-    double acc = 0;
-    for (long i = 0; i < batch; ++i) acc += f(repetition++);
-    const double t = seconds_since(t0);
-    timing_sink = acc;
-    per_evaluation.push_back(t / double(batch));
-    total += t;
-  }
-  std::nth_element(per_evaluation.begin(), per_evaluation.begin() + per_evaluation.size() / 2, per_evaluation.end());
-  return per_evaluation[per_evaluation.size() / 2];
-}
+bench::Repetitions repetitions(const KernelSuiteSettings& s) { return {s.target_seconds, s.min_batches}; }
 
 // ── Cases ───────────────────────────────────────────────────────────────────────────────────
 
@@ -249,25 +222,7 @@ TruncatedMoment truncated_moment(const KernelCase& c, double tolerance) {
              : axial_moment_truncated(c.region, c.w, c.n, tolerance);
 }
 
-// Progress on stderr, one overwritten line, when it is a terminal and not --quiet.
-class StageLine {
- public:
-  explicit StageLine(bool enabled) : enabled_(enabled) {}
-  ~StageLine() {
-    if (drawn_) std::fputc('\n', stderr);
-  }
-  void show(const std::string& text) {
-    if (!enabled_) return;
-    std::fprintf(stderr, "\r%-78.78s", text.c_str());
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-
- private:
-  bool enabled_, drawn_ = false;
-};
-
-std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const KernelSuiteSettings& s, StageLine& stage,
+std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const KernelSuiteSettings& s, bench::StatusLine& stage,
                               const std::string& prefix) {
   std::vector<Row> rows;
   const auto relative = [&](double x) { return std::abs(x - ref.value) / std::abs(ref.value); };
@@ -280,7 +235,7 @@ std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const K
     r.precision = m.precision;
     r.relative_error_bound = m.relative_error;
     r.relative_error = relative(r.value);
-    r.time_s = seconds_per_evaluation([&](long) { return exact_moment(c).value; }, s);
+    r.time_s = bench::cpu_seconds_per_call([&](long) { return exact_moment(c).value; }, repetitions(s));
     rows.push_back(r);
   }
   for (double tolerance : s.tolerances) {
@@ -291,7 +246,7 @@ std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const K
     r.relative_error = relative(t.value);
     r.relative_error_bound = t.error_bound / std::abs(ref.value);
     r.terms = t.terms;
-    r.time_s = seconds_per_evaluation([&](long) { return truncated_moment(c, tolerance).value; }, s);
+    r.time_s = bench::cpu_seconds_per_call([&](long) { return truncated_moment(c, tolerance).value; }, repetitions(s));
     rows.push_back(r);
   }
   const MomentIntegrand f{c.w, c.n, c.v};
@@ -312,7 +267,7 @@ std::vector<Row> measure_case(const KernelCase& c, const Reference& ref, const K
       r.relative_error = std::sqrt(error2 / s.seeds) / std::abs(ref.value);
       r.relative_standard_error = std::sqrt(se2 / s.seeds) / std::abs(ref.value);
       r.seeds = s.seeds;
-      r.time_s = seconds_per_evaluation([&](long rep) { return estimator(c.region, f, samples, std::uint64_t(1000 + rep)).value; }, s);
+      r.time_s = bench::cpu_seconds_per_call([&](long rep) { return estimator(c.region, f, samples, std::uint64_t(1000 + rep)).value; }, repetitions(s));
       rows.push_back(r);
     }
   return rows;
@@ -336,7 +291,7 @@ SphericalRegion regular_polygon(int k) {
   return directions_through(poly, {0, 0, 0});
 }
 
-std::vector<EdgeCostRow> measure_edge_cost(const KernelSuiteSettings& s, StageLine& stage) {
+std::vector<EdgeCostRow> measure_edge_cost(const KernelSuiteSettings& s, bench::StatusLine& stage) {
   std::vector<EdgeCostRow> rows;
   const Vec3 w = normalized(Vec3{0.1, 0.05, 1});
   for (const char* function : {"axial_moment", "axial_moments"})
@@ -348,7 +303,7 @@ std::vector<EdgeCostRow> measure_edge_cost(const KernelSuiteSettings& s, StageLi
         const auto evaluate = [&](long) { return all ? axial_moments(region, w, n)[std::size_t(n)] : axial_moment(region, w, n); };
         const int precision = all ? axial_moments_with_accuracy(region, w, n).precision
                                   : axial_moment_with_accuracy(region, w, n).precision;
-        rows.push_back({function, k, n, seconds_per_evaluation(evaluate, s), precision});
+        rows.push_back({function, k, n, bench::cpu_seconds_per_call(evaluate, repetitions(s)), precision});
       }
     }
   return rows;
@@ -484,7 +439,7 @@ int run_bench_kernels(const BenchOptions& opt) {
   std::vector<Reference> refs;
   std::vector<Row> rows;
   {
-    StageLine stage(!opt.quiet && stderr_is_terminal());
+    bench::StatusLine stage(!opt.quiet && stderr_is_terminal());
     for (std::size_t i = 0; i < cases.size(); ++i) {
       refs.push_back(reference_moment(cases[i]));
       if (!(refs.back().relative_error < 1e-18))

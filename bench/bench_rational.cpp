@@ -38,7 +38,6 @@ namespace daylit::cli {
 
 namespace {
 
-using bench::thread_cpu_seconds;
 
 // The precision of the references: __float128 where the compiler has it.
 #if DAYLIT_HAVE_FLOAT128
@@ -47,18 +46,16 @@ using Reference = real::quad;
 using Reference = long double;
 #endif
 
-// Thread CPU seconds per call of f, repeating until `budget` seconds have passed.
+// Thread CPU seconds per call of f, by the one timing scheme (bench/timing.hpp) over `budget`
+// seconds in at least 3 batches.
 template <class F>
 double time_per_call(F&& f, double budget) {
-  long calls = 0;
-  const double t0 = thread_cpu_seconds();
-  double elapsed = 0;
-  do {
-    f();
-    ++calls;
-    elapsed = thread_cpu_seconds() - t0;
-  } while (elapsed < budget);
-  return elapsed / double(calls);
+  return bench::cpu_seconds_per_call(
+      [&](long) {
+        f();
+        return 0.0;
+      },
+      {budget, 3});
 }
 
 volatile double sink;  // keeps the timed calls from being optimised away

@@ -1,12 +1,11 @@
 #pragma once
 // What the suites of `daylit bench` share (cli/bench_command.cpp registers them): their options, entry
-// points, and small helpers for timing and progress.
+// points, and the progress line; their one timing scheme is bench/timing.hpp.
 
-#include <time.h>
-
-#include <chrono>
 #include <cstdio>
 #include <string>
+
+#include "bench/timing.hpp"
 
 namespace daylit::cli {
 
@@ -14,12 +13,16 @@ struct BenchOptions {
   std::string out;
   bool quick = false;
   bool quiet = false;
-  std::string samples = "samples";  // `scenes`: the folder holding office/ and hall/
+  std::string samples = "samples";  // `scenes`, `skies`, `reflections`: the folder holding office/ and hall/
 };
 
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
 // per edge.
 int run_bench_kernels(const BenchOptions& options);
+// `daylit bench pairs`: the cost per sensor–aperture pair in exact, float and rational geometry.
+int run_bench_pairs(const BenchOptions& options);
+// `daylit bench gradient`: the cost of irradiance gradients against the irradiance alone.
+int run_bench_gradient(const BenchOptions& options);
 // `daylit bench scenes`: error against run time on the bundled samples, and how run time grows.
 int run_bench_scenes(const BenchOptions& options);
 // `daylit bench stiff`: exact and float geometry against independent references on stiff scenes.
@@ -29,27 +32,11 @@ int run_bench_skies(const BenchOptions& options);
 // `daylit bench rational`: Cl2 and Λ by GSL, Grosjean and a table; rational moments exact and
 // semi-analytic; polynomial luminaires by degree.
 int run_bench_rational(const BenchOptions& options);
+// `daylit bench reflections`: ERC + IRC by the path tracer (and, once it lands, the radiosity) on
+// closed-form cases and the samples' rooms.
+int run_bench_reflections(const BenchOptions& options);
 
 namespace bench {
-
-using clock_type = std::chrono::steady_clock;
-
-inline double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
-
-// CPU time of the calling thread, and of the whole process (all threads), in seconds. On a
-// machine shared with other work they measure what a run costs better than the wall clock does:
-// a serial loop's thread CPU time is its wall time on an idle core, and a parallel run's process
-// CPU time over its thread count is, for work as evenly divisible as independent sensors, its
-// wall time on idle cores.
-inline double cpu_seconds(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-inline double thread_cpu_seconds() { return cpu_seconds(CLOCK_THREAD_CPUTIME_ID); }
-inline double process_cpu_seconds() { return cpu_seconds(CLOCK_PROCESS_CPUTIME_ID); }
 
 // Progress on stderr, one overwritten line, when enabled (a terminal and not --quiet).
 class StatusLine {

@@ -16,7 +16,8 @@ std::function<int()> add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Error against run time of approximate paths beside the exact ones");
   bench->footer(
       "Measures each approximate path beside the exact one on the same cases and writes the results as CSV\n"
-      "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff, skies, rational.");
+      "tables and log-log plots (PNG) into --out. Suites: kernels, scenes, stiff, skies, rational,\n"
+      "reflections, pairs, gradient. Every figure is CPU time, the best of several runs (bench/timing.hpp).");
   bench->require_subcommand(1);
 
   // Each suite: a subcommand with the common options and its runner (bench_suites.hpp).
@@ -77,6 +78,34 @@ std::function<int()> add_bench_command(CLI::App& app) {
             "precision). Writes rational_special_functions.csv/.png, rational_moments_error_vs_time.csv/.png,\n"
             "rational_cost_per_edge.png and rational_luminaire_degree.csv. One core; --quick: a few seconds.",
             run_bench_rational);
+  add_suite("reflections", "Reflected components (ERC + IRC): path tracer at N paths and B bounces against closed forms and long runs",
+            "The Monte Carlo path tracer (next-event estimation through the apertures, MIS, seeded) at N = 16 ... 4096\n"
+            "paths per sensor and B = 1 ... 16 bounces on four cases: a plate over upward sensors and a box with an\n"
+            "open ceiling (closed forms from Howell's configuration factors), the office sample (every 30th sensor)\n"
+            "and a 4 x 5 x 3 m side-lit room (80 sensors; both against a path-traced run at N = 65,536, B = 16,\n"
+            "stated as such). CPU time per sensor on one thread. Writes reflections_error_vs_time.csv/.png and\n"
+            "reflections_reference.csv and reflections_reference_bounces.csv (the references per sensor and bounce),\n"
+            "and prints the table and the rooms' grid means.\n"
+            "About 2 minutes of CPU time (--quick: a few seconds).",
+            run_bench_reflections);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled sample office/ (default: samples)");
+  add_suite("pairs", "Cost per sensor-aperture pair: exact, float and all-rational geometry",
+            "The sky component per sensor-aperture pair on the office and hall samples and on an unobstructed\n"
+            "window (the office's dense grid), one thread, in exact (certified intervals), float and rational\n"
+            "geometry (every 25th sensor), with the shares of pairs clipped and needing rationals. Writes pairs.csv\n"
+            "and prints the table. About a minute (--quick: every 10th sensor of the coarse grids).",
+            run_bench_pairs);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled samples office/ and hall/ (default: samples)");
+  add_suite("gradient", "Cost of irradiance gradients against the irradiance alone",
+            "On the office and hall samples' visible regions: the sky kernels against the gradient kernel, and df\n"
+            "against df --gradient per sensor (visibility included); a uniform and a linearly varying luminaire\n"
+            "behind an occluder (E against E and its gradient). One thread, best of 5 alternating runs. Writes\n"
+            "gradient.csv and prints the table (--quick: 100 sensors per sample).",
+            run_bench_gradient);
+  suites->back().command->add_option("--samples", suites->back().options->samples,
+                                     "Folder holding the bundled samples office/ and hall/ (default: samples)");
   return [suites] {
     for (const Suite& s : *suites)
       if (s.command->parsed()) return s.run(*s.options);

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
-# Then `bench scenes --quick`, `bench stiff --quick`, `bench skies --quick` and `bench rational --quick`
-# (below).
+# Then `bench scenes --quick`, `bench stiff --quick`, `bench skies --quick`, `bench rational --quick`
+# `bench reflections --quick`, `bench pairs --quick` and `bench gradient --quick` (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -152,6 +152,67 @@ report=$(awk -F, 'NR > 1 {
 [ -z "$report" ] || fail "$report"
 [ "$(awk -F, 'NR > 1 && $4 ~ /^[0-9.e+-]+$/ && $4 < 1e-10' "$out/rational_luminaire_degree.csv" | wc -l)" -ge 12 ] ||
   fail "rational_luminaire_degree.csv: fewer than 12 rows within 1e-10"
+
+# `daylit bench reflections --quick`: a row for every case, N and B, with finite errors and times;
+# on the closed-form cases the error falls from N = 16 to 256 and stays within 5 standard errors
+# (seeded, so deterministic); in the side-lit room one bounce misses most of the IRC (truncation
+# error over 3 times that of B = 8); the references per sensor add up (DF = SC + ERC + IRC).
+start=$SECONDS
+"$daylit" bench reflections --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench reflections: exit status $?"
+echo "bench reflections --quick: $((SECONDS - start)) s"
+for f in reflections_error_vs_time.csv reflections_error_vs_time.png reflections_reference.csv reflections_reference_bounces.csv; do
+  [ -s "$out/$f" ] || fail "$f missing or empty"
+done
+[ "$(head -c 8 "$out/reflections_error_vs_time.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "reflections plot not a PNG"
+csv=$out/reflections_error_vs_time.csv
+expected='case,method,samples,bounces,sensors,cpu_s_per_sensor,reflected_rms_error_percent,reflected_normalised_rms_error,erc_rms_error_percent,irc_rms_error_percent,standard_error_rms_percent,reference,reference_standard_error_rms_percent'
+[ "$(head -n 1 "$csv")" = "$expected" ] || fail "header of $csv: $(head -n 1 "$csv")"
+report=$(awk -F, -v finite="$finite" 'NR > 1 {
+    rows[$1]++
+    if (!($6 > 0)) print "no time for " $1 " N = " $3 " B = " $4
+    for (i = 7; i <= 11; i++) if ($i !~ finite) print "non-finite field " i " for " $1 " N = " $3 " B = " $4 ": " $i
+    if ($4 + 0 > bmax) bmax = $4 + 0
+    err[$1 "," $3 "," $4] = $7; se[$1 "," $3 "," $4] = $11; ref[$1] = $12
+  }
+  END {
+    split("canopy open_ceiling_box office room_4x5x3", cases, " ")
+    for (i in cases) if (rows[cases[i]] != 6) print rows[cases[i]] + 0 " rows for " cases[i] " (expected 6)"
+    split("canopy open_ceiling_box", exact, " ")
+    for (i in exact) {
+      c = exact[i]
+      if (ref[c] != "closed form") print c ": reference " ref[c]
+      if (!(err[c ",256," bmax] < err[c ",16," bmax])) print c ": error does not fall with N: " err[c ",16," bmax] " -> " err[c ",256," bmax]
+      if (!(err[c ",256," bmax] < 5 * se[c ",256," bmax])) print c ": error " err[c ",256," bmax] " beyond 5 sigma " se[c ",256," bmax]
+    }
+    if (ref["room_4x5x3"] !~ /^path tracer/) print "room_4x5x3: reference " ref["room_4x5x3"]
+    if (!(err["room_4x5x3,256,1"] > 3 * err["room_4x5x3,256," bmax])) print "room_4x5x3: one bounce is not worse than " bmax
+  }' "$csv")
+[ -z "$report" ] || fail "$report"
+report=$(awk -F, 'NR > 1 {
+    n++
+    d = $9 + $11 + $13 - $15; if (d < 0) d = -d
+    if (d > 1e-4 * ($15 > 1 ? $15 : 1)) print "DF is not SC + ERC + IRC in " $1 " sensor " $2
+    if ($1 == "room_4x5x3" && !($13 > 0)) print "no IRC at room_4x5x3 sensor " $2
+  }
+  END { if (n != 34) print n " reference rows (expected 34)" }' "$out/reflections_reference.csv")
+[ -z "$report" ] || fail "$report"
+
+# `daylit bench pairs --quick`: a row per case and mode, exact and float agree on the pairs counted,
+# the rational reference needs rationals everywhere and nothing else does on these samples.
+start=$SECONDS
+"$daylit" bench pairs --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench pairs: exit status $?"
+echo "bench pairs --quick: $((SECONDS - start)) s"
+[ "$(head -n 1 "$out/pairs.csv")" = "case,mode,pairs,us_per_pair,share_clipped,share_rational" ] || fail "pairs.csv header"
+report=$(awk -F, 'NR > 1 { rows++; if (!($4 > 0)) print "no time: " $0
+    if ($2 == "rational" && $6 != 1) print "rational mode without rationals: " $0
+    if ($2 != "rational" && $6 != 0) print "rationals needed: " $0 }
+  END { if (rows != 9) print rows " rows (expected 9)" }' "$out/pairs.csv")
+[ -z "$report" ] || fail "bench pairs: $report"
+
+# `daylit bench gradient --quick`: six rows, each with two positive times.
+"$daylit" bench gradient --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench gradient: exit status $?"
+report=$(awk -F, 'NR > 1 { rows++; if (!($(NF-2) > 0 && $(NF-1) > 0)) print "no time: " $0 } END { if (rows != 6) print rows " rows (expected 6)" }' "$out/gradient.csv")
+[ -z "$report" ] || fail "bench gradient: $report"
 
 echo "$failures failures"
 [ "$failures" -eq 0 ]

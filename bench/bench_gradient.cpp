@@ -1,7 +1,7 @@
-// Cost of the irradiance gradient relative to the irradiance alone (illumination/
-// irradiance_gradient.hpp), single thread, best of 5 alternating runs:
-//
-//   build/bin/daylit-bench-gradient samples      (the path of the samples folder)
+// `daylit bench gradient`: the cost of the irradiance gradient relative to the irradiance alone
+// (illumination/irradiance_gradient.hpp), one thread, thread CPU time, the best of 5 alternating
+// runs (bench/timing.hpp; alternating so that a loaded machine's drift hits both). gradient.csv
+// and a table on stderr.
 //
 // Rows: the kernels alone on the exact visible regions of the office and hall samples (the
 // overcast sky through their glazing: sky_irradiance_through_glazing against
@@ -13,44 +13,54 @@
 
 #include <tbb/global_control.h>
 
-#include <chrono>
-#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iostream>
 #include <numbers>
 #include <string>
+
+#include <fmt/format.h>
+
+#include "bench/bench_suites.hpp"
+#include "geometry/error.hpp"
+#include "report/staged_output.hpp"
 
 #include "illumination/irradiance_gradient.hpp"
 #include "illumination/moments.hpp"
 #include "materials/scene_materials.hpp"
 #include "simulation/sky_component.hpp"
 
-using namespace daylit;
+namespace daylit::cli {
 
 namespace {
 
-// Runs a and b alternately 5 times each (so that a loaded machine's drift hits both) and prints
-// the best time of each in µs per call of their `count` calls, and the ratio b/a.
-void row(const char* what, const std::function<void()>& a, const std::function<void()>& b, std::size_t count) {
+struct GradientRow {
+  std::string what;
+  double us_e, us_gradient;
+};
+std::vector<GradientRow>* rows_out = nullptr;
+
+// Runs a and b alternately, best of `runs` each (bench/timing.hpp), and records the best thread
+// CPU time of each in µs per call of their `count` calls.
+void row(const std::string& what, const std::function<void()>& a, const std::function<void()>& b, std::size_t count,
+         int runs = 5) {
   double best_a = 1e300, best_b = 1e300;
-  const auto time = [](const std::function<void()>& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  for (int run = 0; run < 5; ++run) {
-    best_a = std::min(best_a, time(a));
-    best_b = std::min(best_b, time(b));
+  for (int run = 0; run < runs; ++run) {
+    best_a = std::min(best_a, bench::best_cpu_seconds(a, 1));
+    best_b = std::min(best_b, bench::best_cpu_seconds(b, 1));
   }
   const double us = 1e6 / double(count);
-  std::printf("%-58s %10.2f %10.2f %8.2f\n", what, best_a * us, best_b * us, best_b / best_a);
+  rows_out->push_back({what, best_a * us, best_b * us});
 }
 
 volatile double sink = 0;
 
-void sample(const std::string& folder, const std::string& name) {
+void sample(const std::string& folder, const std::string& name, bool quick) {
   const std::string dir = folder + "/" + name + "/";
   const Scene scene = load_scene({dir + "scene.rad"}, {dir + "apertures.rad"});
-  const SensorGrid grid = read_sensor_grid(dir + "grid.pts");
+  SensorGrid grid = read_sensor_grid(dir + "grid.pts");
+  if (quick) grid.sensors.resize(std::min<std::size_t>(grid.sensors.size(), 100));
   const VisibilityEngine engine(scene, GeometryMode::exact);
   VisibilityOptions options;
   options.edge_sources = true;
@@ -72,7 +82,7 @@ void sample(const std::string& folder, const std::string& name) {
       if (dot(pane, inside) < 0) pane = -1.0 * pane;
       items.push_back({std::move(r), &s, &ap, pane});
     }
-  row((name + ": kernels per visible region (us)").c_str(),
+  row(name + ": kernels per visible region (us)",
       [&] {
         for (const Item& i : items)
           sink = sink + (i.aperture->angular_transmittance.empty()
@@ -91,7 +101,7 @@ void sample(const std::string& folder, const std::string& name) {
         }
       },
       items.size());
-  row((name + ": df per sensor, visibility included (us)").c_str(),
+  row(name + ": df per sensor, visibility included (us)",
       [&] { sink = sink + sky_component(engine, scene, grid, SkyModel::cie_overcast).sc_percent[0]; },
       [&] { sink = sink + sky_component(engine, scene, grid, SkyModel::cie_overcast, {}, true).sc_percent[0]; },
       grid.sensors.size());
@@ -142,14 +152,26 @@ void luminaire() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: %s SAMPLES_FOLDER\n", argv[0]);
-    return 2;
-  }
+int run_bench_gradient(const BenchOptions& opt) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-  std::printf("%-58s %10s %10s %8s\n", "case", "E", "gradient", "ratio");
-  for (const char* name : {"office", "hall"}) sample(argv[1], name);
+  std::vector<GradientRow> rows;
+  rows_out = &rows;
+  for (const char* name : {"office", "hall"}) sample(opt.samples, name, opt.quick);
   luminaire();
+  std::filesystem::create_directories(opt.out);
+  const std::string csv = (std::filesystem::path(opt.out) / "gradient.csv").string();
+  StagedOutputs outputs;
+  std::ofstream f(outputs.stage(csv));
+  f << "case,us_irradiance,us_gradient,ratio\n";
+  if (!opt.quiet) std::cerr << fmt::format("{:<64} {:>10} {:>10} {:>8}\n", "case", "E", "gradient", "ratio");
+  for (const GradientRow& r : rows) {
+    f << fmt::format("\"{}\",{:.4f},{:.4f},{:.4f}\n", r.what, r.us_e, r.us_gradient, r.us_gradient / r.us_e);
+    if (!opt.quiet) std::cerr << fmt::format("{:<64} {:>10.2f} {:>10.2f} {:>8.2f}\n", r.what, r.us_e, r.us_gradient, r.us_gradient / r.us_e);
+  }
+  f.close();
+  if (!f) throw Error(csv + ": cannot write");
+  outputs.commit();
   return 0;
 }
+
+}  // namespace daylit::cli
