@@ -323,3 +323,21 @@ TEST_CASE("a surface that is both luminaire and occluder hides itself unless exc
   options.excluded_occluder = 1;
   CHECK(engine.visible_region({0, 0, 0}, {0, 0, 1}, 0, counters, options).empty());
 }
+
+TEST_CASE("a receiver facing straight down sees no sky: its hemisphere meets the upper half only on the horizon") {
+  // A vertical window in front of the receiver, reaching above and below it: with n = −z exactly
+  // the region above the horizon and in front of the receiver has zero measure. (Before this was
+  // answered up front, clipping to the two opposite planes left a degenerate loop on the horizon
+  // worth 0.5 % DF.) Tilted by 1e-3 rad the receiver sees a sliver of order 1e-3 of the window's
+  // sky, and the answer is continuous as the tilt goes to 0.
+  Scene scene;
+  scene.apertures.push_back({polygon({{5, -5, -5}, {5, 5, -5}, {5, 5, 5}, {5, -5, 5}}), 1.0});
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::floating, GeometryMode::rational}) {
+    CHECK(sc_in(scene, {0, 0, 0}, mode, {0, 0, -1}) == 0);
+    const double tilted = sc_in(scene, {0, 0, 0}, mode, {1e-3, 0, -1});
+    const double less_tilted = sc_in(scene, {0, 0, 0}, mode, {1e-6, 0, -1});
+    CHECK(tilted > 0);
+    CHECK(tilted < 1e-4);
+    CHECK(less_tilted < 1e-3 * tilted);
+  }
+}
