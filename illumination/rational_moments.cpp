@@ -141,9 +141,10 @@ class FrameMoments {
 thread_local RationalDiagnostics last_diagnostics;
 
 // Evaluates compute(R{}) in double, long double, then __float128 until (10 + order)·u·κ ≤ 1e-13
-// (moments.cpp's with_escalation, for Tracked results), and records what it took.
+// (moments.cpp's with_escalation, for Tracked results), or until the absolute error estimate
+// (10 + order)·u·Σ|terms| is at most `absolute_target` (0: none), and records what it took.
 template <class F>
-RationalMoment escalate(int order, F&& compute) {
+RationalMoment escalate(int order, F&& compute, double absolute_target = 0) {
   constexpr double target = 1e-13;
   auto condition = [](auto t) {
     const double mag = double(t.m), val = std::abs(double(t.v));
@@ -154,6 +155,8 @@ RationalMoment escalate(int order, F&& compute) {
   const auto d = compute(double{});
   last_diagnostics = {0, condition(d)};
   if (estimate(0x1p-53, d) <= target) return {double(d.v), estimate(0x1p-53, d)};
+  if (absolute_target > 0 && (10.0 + order) * 0x1p-53 * double(d.m) <= absolute_target)
+    return {double(d.v), d.v == 0 ? std::numeric_limits<double>::infinity() : estimate(0x1p-53, d)};
   const auto l = compute((long double)0);
   last_diagnostics.precision = 1;
 #ifdef DAYLIT_HAS_FLOAT128
@@ -591,11 +594,12 @@ Tracked<R> tensor_moment(const SphericalRegion& region, const Vec3& w_in, const 
 
 }  // namespace
 
-RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b) {
+RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
+                                      double absolute_tolerance) {
   check_side(region, w);
   if (!is_finite(a) || !is_finite(b)) throw Error("factor axes must be finite");
-  RationalMoment m =
-      escalate(2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); });
+  RationalMoment m = escalate(
+      2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); }, absolute_tolerance * norm(w));
   m.value /= norm(w);
   return m;
 }

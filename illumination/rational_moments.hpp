@@ -107,7 +107,13 @@ RationalMoment rational_moment_n11(const SphericalRegion& region, const Vec3& v,
 // and T^{2;1}(a, b) = ½ Σ_edges ∫ M³, T^{3;2}(a, b, c) = ½ Σ_edges ∫ M⁴ (eqs. 64, 75 with n = −m).
 // Irradiance from exitance (a·u)/(w·u) is T^{2;1}(a, n)/π (eq. 67), from h² (e_i·u)(e_j·u)/(w·u)²
 // it is h² T^{3;2}(e_i, e_j, n)/π (eqs. 70–77). w non-zero (normalised here).
-RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b);
+// `absolute_tolerance` > 0: the double pass is accepted where its estimated absolute error is at
+// most that, even if the moment itself is small against its terms (radiosity sums many elements'
+// moments, each small against the element's own irradiance where the region is symmetric about
+// the axis a: relative accuracy of the moment alone is not what the sum needs; relative_error is
+// then infinite for a value of exactly 0).
+RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
+                                      double absolute_tolerance = 0);
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
                                          const Vec3& c);
 

@@ -1,0 +1,245 @@
+// The reflected components (DESIGN.md §4): mesh, element transport, radiosity solution, sensors'
+// ERC and IRC, error estimate and energy balance, each against an independent reference.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "illumination/hemisphere_clip.hpp"
+#include "reference_quadrature.hpp"
+#include "simulation/element_transport.hpp"
+#include "simulation/radiosity_solver.hpp"
+#include "simulation/reflected_components.hpp"
+#include "test_scenes.hpp"
+
+using namespace daylit;
+using daylit::test::polygon;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Howell's configuration factors (DESIGN.md §9), element at the origin with normal +z.
+double howell_parallel(double a, double b, double c) {
+  const double A = a / c, B = b / c;
+  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+         (2 * kPi);
+}
+double howell_perpendicular(double a, double b, double c) {
+  const double s = std::hypot(b, c);
+  return (std::atan(a / b) - (b / s) * std::atan(a / s)) / (2 * kPi);
+}
+
+RadiosityMesh mesh_of(const std::vector<Vec3>& rect, double edge) {
+  return mesh_surfaces({polygon(rect)}, {0.5}, [=](const RadiosityElement&) { return edge; });
+}
+
+// Σ over the elements of a meshed luminaire of the coefficients times the node values of M, each
+// element unobstructed (its own directions).
+double mesh_irradiance(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n,
+                       const std::function<double(const Vec3&)>& exitance) {
+  double e = 0;
+  for (const auto& el : mesh.elements) {
+    const auto c = element_irradiance_coefficients(SphericalRegion{}, true, el, x, n);
+    for (int k = 0; k < 3; ++k) e += c[k] * exitance(el.nodes[k]);
+  }
+  return e;
+}
+
+// The same with the whole luminaire's directions (cut to the receiver's hemisphere) clipped to
+// each element's cone, as behind occluders.
+double mesh_irradiance_clipped(const RadiosityMesh& mesh, const std::vector<Vec3>& luminaire, const Vec3& x,
+                               const Vec3& n, const std::function<double(const Vec3&)>& exitance) {
+  const SphericalRegion whole = clip_to_hemisphere(directions_through(luminaire, x), n);
+  double e = 0;
+  for (const auto& el : mesh.elements) {
+    const auto c = element_irradiance_coefficients(whole, false, el, x, n);
+    for (int k = 0; k < 3; ++k) e += c[k] * exitance(el.nodes[k]);
+  }
+  return e;
+}
+
+Scene box_scene(double w, double d, double h, bool outward_normals = false) {
+  Scene s;
+  std::vector<std::vector<Vec3>> faces = {
+      {{0, 0, 0}, {w, 0, 0}, {w, d, 0}, {0, d, 0}},  {{0, 0, h}, {0, d, h}, {w, d, h}, {w, 0, h}},
+      {{0, 0, 0}, {0, 0, h}, {w, 0, h}, {w, 0, 0}},  {{0, d, 0}, {w, d, 0}, {w, d, h}, {0, d, h}},
+      {{0, 0, 0}, {0, d, 0}, {0, d, h}, {0, 0, h}},  {{w, 0, 0}, {w, 0, h}, {w, d, h}, {w, d, 0}}};
+  for (auto& f : faces) {
+    if (outward_normals) std::reverse(f.begin(), f.end());
+    s.occluders.push_back(polygon(f, "face"));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("mesh: the nodal basis is Lagrange's and the elements tile the polygon") {
+  const RadiosityMesh mesh = mesh_of({{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {0, 2, 0}}, 0.7);
+  double area = 0;
+  for (const auto& e : mesh.elements) {
+    area += e.area;
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) CHECK(e.basis(k, e.nodes[j]) == Approx(k == j ? 1.0 : 0.0).margin(1e-14));
+    CHECK(dot(cross(e.vertices[1] - e.vertices[0], e.vertices[2] - e.vertices[0]), e.normal) > 0);
+  }
+  CHECK(area == Approx(6.0).epsilon(1e-14));
+  CHECK(mesh.max_level >= 2);
+}
+
+TEST_CASE("element transport: uniform exitance gives Howell's configuration factors to 1e-12") {
+  // A luminaire of unit exitance irradiates with E = F (Howell's F = E/(πL), M = πL).
+  const Vec3 x{0, 0, 0}, n{0, 0, 1};
+  const auto one = [](const Vec3&) { return 1.0; };
+  SECTION("parallel rectangle") {
+    const std::vector<Vec3> rect{{0, 0, 1.5}, {0, 2, 1.5}, {3, 2, 1.5}, {3, 0, 1.5}};
+    const RadiosityMesh mesh = mesh_of(rect, 0.8);
+    const double f = howell_parallel(3, 2, 1.5);
+    CHECK(mesh_irradiance(mesh, x, n, one) == Approx(f).epsilon(1e-12));
+    CHECK(mesh_irradiance_clipped(mesh, rect, x, n, one) == Approx(f).epsilon(1e-12));
+  }
+  SECTION("perpendicular rectangle") {
+    const std::vector<Vec3> rect{{0, 1.2, 0}, {2, 1.2, 0}, {2, 1.2, 0.9}, {0, 1.2, 0.9}};
+    const RadiosityMesh mesh = mesh_of(rect, 0.5);
+    const double f = howell_perpendicular(2, 1.2, 0.9);
+    CHECK(mesh_irradiance(mesh, x, n, one) == Approx(f).epsilon(1e-12));
+    CHECK(mesh_irradiance_clipped(mesh, rect, x, n, one) == Approx(f).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("element transport: linear exitance against long-double quadrature of the area integral to 1e-10") {
+  // M(y) = 2 + 0.7 y_x − 0.4 y_y + 0.3 y_z on a tilted rectangle; the elements' linear
+  // interpolants reproduce it exactly, so the sum over them is the exact irradiance.
+  const Vec3 o{-1, 0.5, 1}, e1{2, 0.3, 0.2}, e2{0.1, 1.5, 0.9};
+  const std::vector<Vec3> rect{o, o + e1, o + e1 + e2, o + e2};
+  const auto m = [](const Vec3& y) { return 2 + 0.7 * y.x - 0.4 * y.y + 0.3 * y.z; };
+  const Vec3 x{0.2, -0.3, -0.6}, n = normalized(Vec3{0.1, 0.2, 1});
+  const RadiosityMesh mesh = mesh_of(rect, 0.6);
+  using test::LVec3;
+  const LVec3 lx = test::lvec(x), ln = test::lvec(n);
+  const Vec3 w = normalized(cross(e1, e2));
+  const LVec3 lw = test::lvec(w);
+  const long double ref = test::integrate_parallelogram(
+      test::lvec(o), test::lvec(e1), test::lvec(e2), [&](const LVec3& y) {
+        const LVec3 d{y.x - lx.x, y.y - lx.y, y.z - lx.z};
+        const long double r2 = d.x * d.x + d.y * d.y + d.z * d.z;
+        const long double cr = (d.x * ln.x + d.y * ln.y + d.z * ln.z) / std::sqrt(r2);
+        const long double cl = std::abs(d.x * lw.x + d.y * lw.y + d.z * lw.z) / std::sqrt(r2);
+        const long double my = 2 + 0.7L * y.x - 0.4L * y.y + 0.3L * y.z;
+        return my * cr * cl / (3.141592653589793238462643383279502884L * r2);
+      });
+  CHECK(mesh_irradiance(mesh, x, n, m) == Approx(double(ref)).epsilon(1e-10));
+  CHECK(mesh_irradiance_clipped(mesh, rect, x, n, m) == Approx(double(ref)).epsilon(1e-10));
+}
+
+TEST_CASE("closed box: form factor rows sum to 1 and uniform emission gives M0/(1 - rho)") {
+  for (bool outward : {false, true}) {
+    const Scene scene = box_scene(4, 5, 3, outward);
+    const VisibilityEngine engine(scene, GeometryMode::exact);
+    ReflectionOptions o;
+    o.element_size = 1.6;
+    const double rho = 0.7;
+    const RadiositySystem sys = radiosity_system(scene, std::vector<double>(6, rho), engine, {}, o);
+    REQUIRE(sys.rows.size() == 6 * sys.mesh.elements.size());
+    std::vector<double> source(sys.rows.size(), 0.0);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      // The inner side: the one whose normal points into the box.
+      const auto& el = sys.mesh.elements[u / 6];
+      const int side = int(u / 3 % 2);
+      const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
+      const bool inner = dot(n, Vec3{2, 2.5, 1.5} - el.nodes[u % 3]) > 0;
+      double f = 0;
+      for (const auto& [j, c] : sys.rows[u]) f += c;
+      CHECK(f == Approx(inner ? 1.0 : 0.0).margin(1e-12));
+      // Inside a closed box no sky and no ground; outside, both.
+      if (inner)
+        CHECK(sys.first_bounce[u] == 0);
+      else
+        CHECK(sys.first_bounce[u] > 0);
+      source[u] = inner ? 1.0 : 0.0;
+    }
+    const RadiositySolution sol = solve_radiosity(sys.rows, sys.reflectance, source);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      // Outside, nothing emits and nothing is seen: 0, up to the slivers of the box that a node
+      // rounded 1e-15 off its face sees at grazing incidence (measured: coefficients ~1e-33).
+      if (source[u] == 1.0)
+        CHECK(sol.exitance[u] == Approx(1 / (1 - rho)).epsilon(1e-12));
+      else
+        CHECK(std::abs(sol.exitance[u]) < 1e-25);
+    }
+  }
+}
+
+TEST_CASE("parallel plates: the irradiance grows towards M/(1 - rho1 rho2) as the plates widen") {
+  // Plate 1 (z = 0, facing up) emits M0 = 1; plate 2 (z = 1, facing down). For infinite plates
+  // M1 = 1 + rho1 M2, M2 = rho2 M1, so the irradiance on plate 2 is M1 = 1/(1 - rho1 rho2). For
+  // half-width W, with F(y) the configuration factor from a point y of one plate to the other
+  // (Howell, four rectangles) and F_min = F(corner): M1 ≤ 1/(1 - rho1 rho2) everywhere, and
+  // min M1 ≥ 1 + rho1 rho2 F_min² min M1, so the irradiance E at a node p of plate 2 obeys
+  //     F(p) / (1 - rho1 rho2 F_min²) ≤ E < 1/(1 - rho1 rho2),
+  // and it must grow with W.
+  const double rho1 = 0.6, rho2 = 0.8, limit = 1 / (1 - rho1 * rho2);
+  double previous = 0;
+  for (double W : {1.0, 3.0, 10.0}) {
+    Scene s;
+    s.occluders.push_back(polygon({{-W, -W, 0}, {W, -W, 0}, {W, W, 0}, {-W, W, 0}}, "plate1"));
+    s.occluders.push_back(polygon({{-W, -W, 1}, {-W, W, 1}, {W, W, 1}, {W, -W, 1}}, "plate2"));
+    const VisibilityEngine engine(s, GeometryMode::exact);
+    ReflectionOptions o;
+    o.element_size = W / 2;
+    o.ground_reflectance = 0;
+    const RadiositySystem sys = radiosity_system(s, {rho1, rho2}, engine, {}, o);
+    std::vector<double> source(sys.rows.size(), 0.0);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      const auto& el = sys.mesh.elements[u / 6];
+      const Vec3 n = (u / 3 % 2 == 0) ? el.normal : -1.0 * el.normal;
+      if (el.surface == 0 && n.z > 0) source[u] = 1;
+    }
+    const RadiositySolution sol = solve_radiosity(sys.rows, sys.reflectance, source);
+    // The irradiance on plate 2 at the node nearest its centre, from its row.
+    double best = 1e300, e = 0;
+    Vec3 at{};
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      const auto& el = sys.mesh.elements[u / 6];
+      const Vec3 n = (u / 3 % 2 == 0) ? el.normal : -1.0 * el.normal;
+      const Vec3 p = el.nodes[u % 3];
+      if (el.surface != 1 || n.z > 0 || norm(p - Vec3{0, 0, 1}) >= best) continue;
+      best = norm(p - Vec3{0, 0, 1});
+      at = p;
+      e = 0;
+      for (const auto& [j, c] : sys.rows[u]) e += c * sol.exitance[j];
+    }
+    const double f_at = howell_parallel(W - at.x, W - at.y, 1) + howell_parallel(W + at.x, W - at.y, 1) +
+                        howell_parallel(W - at.x, W + at.y, 1) + howell_parallel(W + at.x, W + at.y, 1);
+    const double f_min = howell_parallel(2 * W, 2 * W, 1);
+    CHECK(e > previous);
+    CHECK(e < limit);
+    CHECK(e >= f_at / (1 - rho1 * rho2 * f_min * f_min));
+    previous = e;
+  }
+}
+
+TEST_CASE("reflected components: bad reflectances are refused") {
+  const Scene scene = box_scene(1, 1, 1);
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  ReflectionOptions o;
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, 1.0), engine, {}, o),
+                    Catch::Contains("outside [0, 1)") && Catch::Contains("test:1"));
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, -0.1), engine, {}, o),
+                    Catch::Contains("outside [0, 1)"));
+  o.ground_reflectance = 1;
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, 0.5), engine, {}, o),
+                    Catch::Contains("ground reflectance"));
+}
+
+TEST_CASE("reflected components: a black scene does no radiosity work") {
+  const Scene scene = box_scene(1, 1, 1);
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  ReflectionOptions o;
+  o.ground_reflectance = 0;
+  const ReflectionResult r = reflected_components(scene, std::vector<double>(6, 0.0), engine, {}, o);
+  CHECK(r.black);
+  CHECK(r.elements == 0);
+}
