@@ -12,6 +12,8 @@ namespace daylit {
 
 namespace {
 
+constexpr double kTransportTolerance = 1e-11;
+
 bool crosses_plane(const SphericalRegion& region, const Vec3& n) {
   for (const auto& loop : region.loops)
     for (const Vec3& u : loop)
@@ -53,10 +55,12 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   const double l0 = lambert(part, n);
   if (l0 == 0) return c;
   // The moments need to be accurate against the element's irradiance, not against themselves
-  // (they vanish where the region is symmetric about e_i): 1e-13 of Lambert's term, scaled to
-  // the moments' units by the element's size over h.
+  // (they vanish where the region is symmetric about e_i): 1e-11 of Lambert's term, scaled to
+  // the moments' units by the element's size over h. The representation of the exitance on the
+  // elements costs 1e-6 and more (the error estimate says how much), so digits beyond that are
+  // not worth the long double and __float128 passes, which cost 10 to 100 times the double one.
   const double size = std::sqrt(element.area);
-  const double tol = 1e-13 * std::abs(l0) * std::max(1.0, size / h);
+  const double tol = kTransportTolerance * std::abs(l0) * std::max(1.0, size / h);
   const double t1 = linear_exitance_moment(part, w, e1, n, tol).value;
   const double t2 = linear_exitance_moment(part, w, e2, n, tol).value;
   for (int k = 0; k < 3; ++k) {
