@@ -12,7 +12,7 @@ namespace daylit {
 
 namespace {
 
-constexpr double kTransportTolerance = 1e-11;
+constexpr double kTransportTolerance = 1e-9;
 
 bool crosses_plane(const SphericalRegion& region, const Vec3& n) {
   for (const auto& loop : region.loops)
@@ -55,7 +55,7 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   const double l0 = lambert(part, n);
   if (l0 == 0) return c;
   // The moments need to be accurate against the element's irradiance, not against themselves
-  // (they vanish where the region is symmetric about e_i): 1e-11 of Lambert's term, scaled to
+  // (they vanish where the region is symmetric about e_i): 1e-9 of Lambert's term, scaled to
   // the moments' units by the element's size over h. The representation of the exitance on the
   // elements costs 1e-6 and more (the error estimate says how much), so digits beyond that are
   // not worth the long double and __float128 passes, which cost 10 to 100 times the double one.

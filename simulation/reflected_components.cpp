@@ -162,24 +162,26 @@ class Transport {
   ThroughApertures through_apertures(const Vec3& x, const Vec3& n, std::size_t own, bool with_sky,
                                      VisibilityCounters& c) const {
     ThroughApertures out;
+    if (!with_sky && ground_luminance_ == 0) return out;
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
     for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
       const Aperture& ap = scene_.apertures[a];
+      // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
+      const SphericalRegion all = engine_.visible_region(x, n, a, c, full);
+      if (all.empty()) continue;
       const SphericalRegion above = above_horizon(engine_, x, n, a, c, half);
-      const SphericalRegion all = options_.ground_reflectance > 0 ? engine_.visible_region(x, n, a, c, full)
-                                                                   : SphericalRegion{};
       if (ap.angular_transmittance.empty()) {
         if (with_sky && !above.empty()) out.sky += ap.transmittance * sky_irradiance(above, n, options_.sky);
-        if (!all.empty())
+        if (ground_luminance_ > 0)
           out.ground += ap.transmittance * ground_luminance_ *
                         (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
       } else {
         const Vec3 pane = normalized(newell_normal(ap.polygon.vertices));
         if (with_sky && !above.empty())
           out.sky += sky_irradiance_through_glazing(above, n, options_.sky, pane, ap.angular_transmittance);
-        if (!all.empty()) {
+        if (ground_luminance_ > 0) {
           const auto glazed = [&](const SphericalRegion& r) {
             return r.empty() ? 0.0
                              : sky_irradiance_through_glazing(r, n, SkyModel::uniform, pane, ap.angular_transmittance);
@@ -200,12 +202,14 @@ class Transport {
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;  // the box's occluders start with the scene's
     for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
-      const SphericalRegion above = above_horizon(*sky_box_, x, n, f, c, half);
+      // The region above the horizon is part of the whole one: where that is empty (every
+      // receiver inside a closed room), the second query is left out, exactly.
       const SphericalRegion all = sky_box_->visible_region(x, n, f, c, full);
-      if (!all.empty()) empty = false;
+      if (all.empty()) continue;
+      empty = false;
+      const SphericalRegion above = above_horizon(*sky_box_, x, n, f, c, half);
       if (!above.empty()) e += sky_irradiance(above, n, options_.sky);
-      if (!all.empty() && ground_luminance_ > 0)
-        e += ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
+      if (ground_luminance_ > 0) e += ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
     }
     return e;
   }
