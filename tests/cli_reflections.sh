@@ -14,7 +14,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 room=(--scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts")
 # A coarse mesh and no refinement: this checks the plumbing, tests/test_reflections.cpp the numbers.
-fast=(--element-size 3 --max-refinements 0 --threads 2)
+fast=(--components all --element-size 3 --max-refinements 0 --threads 2)
 "$daylit" df "${room[@]}" "${fast[@]}" --out "$work/all.csv" --summary "$work/all.json" --quiet || fail "df on the room"
 "$daylit" df "${room[@]}" --components sc --out "$work/sc.csv" --quiet || fail "df --components sc on the room"
 head -1 "$work/all.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,erc_percent,irc_percent,df_percent,reflection_error_bound_percent' ||
@@ -59,13 +59,13 @@ expect_failure() {  # name, expected text, arguments...
   [ ! -e "$work/bad.csv" ] && [ ! -e "$work/bad.json" ] || fail "$name: output left behind"
 }
 sed 's/^5 0.5 0.5 0.5 0 0$/5 1.2 1.2 1.2 0 0/' "$samples/room/scene.rad" > "$work/bright.rad"
-expect_failure "reflectance above 1" "outside \[0, 1\]" --scene "$work/bright.rad" --apertures "$samples/room/apertures.rad" \
+expect_failure "reflectance above 1" "outside \[0, 1\]" --components all --scene "$work/bright.rad" --apertures "$samples/room/apertures.rad" \
   --grid "$samples/room/grid.pts"
 sed 's/^void plastic wall_mat$/void mirror wall_mat/; s/^5 0.5 0.5 0.5 0 0$/3 0.5 0.5 0.5/' "$samples/room/scene.rad" > "$work/mirror.rad"
-expect_failure "mirror" "mirror 'wall_mat'" --scene "$work/mirror.rad" --apertures "$samples/room/apertures.rad" \
+expect_failure "mirror" "mirror 'wall_mat'" --components all --scene "$work/mirror.rad" --apertures "$samples/room/apertures.rad" \
   --grid "$samples/room/grid.pts"
-expect_failure "ground reflectance 1" "ground-reflectance" "${room[@]}" --ground-reflectance 1
-expect_failure "gradient with reflections" "components sc" "${room[@]}" --gradient
+expect_failure "ground reflectance 1" "ground-reflectance" "${room[@]}" --components all --ground-reflectance 1
+expect_failure "gradient with reflections" "components sc" "${room[@]}" --components all --gradient
 # With --components sc a mirror is no obstacle: its reflectance is not used.
 "$daylit" df --scene "$work/mirror.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts" \
   --components sc --out "$work/mirror-sc.csv" --quiet || fail "mirror with --components sc"
