@@ -82,7 +82,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"residual_max", r.residual_max},
       {"how",
        "estimate, not a rigorous bound: the residual M_h - rho(E0 + K M_h) evaluated exactly at 4 check points per "
-       "element side (centroid and near the vertices), its maximum per side carried through every bounce by "
+       "element side (centroid and near the vertices), its mean |r| per side carried through every bounce by "
        "e = |r| + rho |K| e (the discrete form of |r|/(1 - rho_max)), then to each sensor by the magnitudes of its "
        "coefficients; plus, through glass, the spread of T over each element's directions"}};
   j["energy_balance"] = {

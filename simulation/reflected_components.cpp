@@ -520,14 +520,16 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
 
     // ---- Residual at check points other than the nodes, per element side.
     static constexpr double kCheck[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.8, 0.1, 0.1}, {0.1, 0.8, 0.1}, {0.1, 0.1, 0.8}};
-    std::vector<double> residual(2 * ne, 0.0);
+    std::vector<double> residual(2 * ne, 0.0), residual_peak(2 * ne, 0.0);
     const auto rlocals = for_each_sensor<Local>(2 * ne, 8, {}, [&](std::size_t i, Local& local) {
       const std::size_t e = i / 2;
       const int side = int(i % 2);
       const RadiosityElement& el = mesh.elements[e];
       const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
       const double r = mesh.surfaces[el.surface].reflectance;
-      double worst = 0;
+      // A sensor's irradiance integrates the exitance's error over each element, so what it
+      // needs is the element's mean |r|, not its maximum: the mean over the check points.
+      double sum = 0, worst = 0;
       for (const auto& b : kCheck) {
         const Vec3 y = el.point(b[0], b[1], b[2]);
         const ReceiverRow row = receiver_row(t, y, n, el.surface, local.counters);
@@ -535,16 +537,18 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
         for (const auto& [j, c] : row.row) e_total += c * m[j];
         double m_h = 0;
         for (int k = 0; k < 3; ++k) m_h += el.basis(k, y) * m[unknown(e, side, k)];
+        sum += std::abs(m_h - r * e_total);
         worst = std::max(worst, std::abs(m_h - r * e_total));
       }
-      residual[i] = worst;
+      residual[i] = sum / 4;
+      residual_peak[i] = worst;
     });
     for (const auto& l : rlocals) result.counters += l.counters;
     result.residual_max = 0;
     std::vector<double> r_source(nu);
     for (std::size_t u = 0; u < nu; ++u) {
       r_source[u] = residual[u / 3];
-      result.residual_max = std::max(result.residual_max, residual[u / 3]);
+      result.residual_max = std::max(result.residual_max, residual_peak[u / 3]);
     }
     // ē = |r̄| + ρ|K| ē: the residual carried through every further bounce.
     const std::vector<double> e_bar = solve_radiosity(k_rows, rho, r_source, true).exitance;

@@ -21,7 +21,8 @@
 //   element's vertices is counted in the error estimate).
 //   Solve: M = ρ (E₀ + K M) by Gauss–Seidel to roundoff.
 //   Error: the residual r = M_h − ρ(E₀ + K M_h) at check points other than the nodes (the
-//   centroid and three points near the vertices of every element side), carried to the elements
+//   centroid and three points near the vertices of every element side), its mean |r| per element
+//   side (a sensor integrates the exitance's error over each element), carried to the elements
 //   by ē = |r̄| + ρ|K| ē (the discrete form of ‖r‖/(1 − ρ_max), element by element) and to each
 //   sensor by the magnitudes of its coefficients: an estimate, not a rigorous bound (the
 //   residual is sampled, not maximised). Elements whose estimated contribution is largest are
