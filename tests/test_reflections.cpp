@@ -324,3 +324,17 @@ TEST_CASE("window room: energy balance, first-bounce flux = absorbed + escaping,
   // Gauss–Seidel converged to roundoff.
   CHECK(fine.solver_change <= 1e-15);
 }
+
+TEST_CASE("window room: refinement splits where the estimate is largest and lowers it") {
+  const WindowRoom room;
+  const ReflectionResult r = solve_room(room, 3, 2);
+  REQUIRE(r.error_by_round.size() == 3);
+  CHECK(r.refinements == 2);
+  CHECK(r.max_level >= 2);
+  // Each round splits the largest contributors: the worst sensor's estimate falls.
+  CHECK(r.error_by_round[1] < r.error_by_round[0]);
+  CHECK(r.error_by_round[2] < r.error_by_round[1]);
+  CHECK(r.max_error_percent == r.error_by_round.back());
+  WARN("refinement: worst estimate by round " << r.error_by_round[0] << ", " << r.error_by_round[1] << ", "
+                                              << r.error_by_round[2] << " DF points; " << r.elements << " elements");
+}
