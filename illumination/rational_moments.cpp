@@ -1,6 +1,7 @@
 #include "illumination/rational_moments.hpp"
 
 #include <cmath>
+#include <array>
 #include <limits>
 #include <map>
 #include <string>
@@ -602,6 +603,57 @@ RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3&
       2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); }, absolute_tolerance * norm(w));
   m.value /= norm(w);
   return m;
+}
+
+// Both moments T^{2;1}(a1, b) and T^{2;1}(a2, b) in one pass over the edges: the arc's frame,
+// its G table and the η integral (Clausen functions, most of the cost) are shared.
+template <class R>
+std::array<Tracked<R>, 2> tensor_moment_pair(const SphericalRegion& region, const Vec3& w_in, const Vec3& a1_in,
+                                             const Vec3& a2_in, const Vec3& b_in) {
+  const real::V3<R> w = unit<R>(w_in), a1(a1_in), a2(a2_in), b(b_in);
+  Tracked<R> s1, s2;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
+    const WFrameArc<R> f(arc, w);
+    const GTable<R> G(f, 3, -1, 3);
+    Tracked<R> eta_w = base_moment_edge(f);  // −(w·m) ∫ η ds
+    eta_w.v = -eta_w.v;
+    const TensorEdge<R> e{f, G, w, eta_w};
+    s1 += e.m3(a1, b);
+    s2 += e.m3(a2, b);
+  });
+  return {Tracked<R>{s1.v / 2, s1.m / 2}, Tracked<R>{s2.v / 2, s2.m / 2}};
+}
+
+std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,
+                                                      const Vec3& a2, const Vec3& b, double absolute_tolerance) {
+  check_side(region, w);
+  if (!is_finite(a1) || !is_finite(a2) || !is_finite(b)) throw Error("factor axes must be finite");
+  // escalate()'s rule for each of the two, and the pair goes on together while either needs it.
+  constexpr double target = 1e-13, order = 2;
+  const double scale = absolute_tolerance * norm(w);
+  const auto accepted = [&](auto t, double u) {
+    const double mag = double(t.m), val = std::abs(double(t.v));
+    if ((10.0 + order) * u * (mag == 0 ? 1.0 : mag / val) <= target) return true;
+    return scale > 0 && (10.0 + order) * u * mag <= scale;
+  };
+  const auto out = [&](auto p, double u) {
+    std::array<RationalMoment, 2> r;
+    for (int i = 0; i < 2; ++i) {
+      const double mag = double(p[i].m), val = std::abs(double(p[i].v));
+      r[i] = {double(p[i].v) / norm(w), val == 0 ? (mag == 0 ? 0.0 : std::numeric_limits<double>::infinity())
+                                                 : (10.0 + order) * u * mag / val};
+    }
+    return r;
+  };
+  const auto d = tensor_moment_pair<double>(region, w, a1, a2, b);
+  if (accepted(d[0], 0x1p-53) && accepted(d[1], 0x1p-53)) return out(d, 0x1p-53);
+  const auto l = tensor_moment_pair<long double>(region, w, a1, a2, b);
+#ifdef DAYLIT_HAS_FLOAT128
+  if (accepted(l[0], 0x1p-64) && accepted(l[1], 0x1p-64)) return out(l, 0x1p-64);
+  return out(tensor_moment_pair<real::quad>(region, w, a1, a2, b), 0x1p-113);
+#else
+  return out(l, 0x1p-64);
+#endif
 }
 
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,

@@ -14,6 +14,7 @@
 // long double, and if need be in __float128 (Cl2 by its series there, clausen.hpp), as
 // moments.hpp does. The estimate is returned with the value.
 
+#include <array>
 #include <vector>
 
 #include "geometry/spherical_region.hpp"
@@ -116,6 +117,11 @@ RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3&
                                       double absolute_tolerance = 0);
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
                                          const Vec3& c);
+// linear_exitance_moment(region, w, a1, b, tol) and (region, w, a2, b, tol) in one pass over the
+// edges (the Clausen functions of the η integral shared): the two in-plane axes of a linearly
+// varying element (radiosity). Same values, same accuracy; the pair escalates together.
+std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,
+                                                      const Vec3& a2, const Vec3& b, double absolute_tolerance = 0);
 
 // What the last call on this thread needed: the precision it settled in (0 double, 1 long
 // double, 2 __float128) and κ = magnitude/|value| of its double pass, which measures how much the

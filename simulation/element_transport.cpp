@@ -61,8 +61,8 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   // not worth the long double and __float128 passes, which cost 10 to 100 times the double one.
   const double size = std::sqrt(element.area);
   const double tol = kTransportTolerance * std::abs(l0) * std::max(1.0, size / h);
-  const double t1 = linear_exitance_moment(part, w, e1, n, tol).value;
-  const double t2 = linear_exitance_moment(part, w, e2, n, tol).value;
+  const auto t = linear_exitance_moments(part, w, e1, e2, n, tol);
+  const double t1 = t[0].value, t2 = t[1].value;
   for (int k = 0; k < 3; ++k) {
     const Vec3 g = element.basis_gradient(k);
     c[k] = (element.basis(k, x) * l0 + h * (dot(g, e1) * t1 + dot(g, e2) * t2)) / std::numbers::pi;

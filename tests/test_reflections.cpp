@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "illumination/hemisphere_clip.hpp"
+#include "illumination/rational_moments.hpp"
 #include "reference_quadrature.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/radiosity_solver.hpp"
@@ -132,6 +133,17 @@ TEST_CASE("element transport: linear exitance against long-double quadrature of 
       });
   CHECK(mesh_irradiance(mesh, x, n, m) == Approx(double(ref)).epsilon(1e-10));
   CHECK(mesh_irradiance_clipped(mesh, rect, x, n, m) == Approx(double(ref)).epsilon(1e-10));
+}
+
+TEST_CASE("linear_exitance_moments: the pair equals two single moments") {
+  // A near and a grazing receiver (the pair shares the edges' Clausen functions, nothing else).
+  for (const Vec3& x : {Vec3{0.3, 0.2, -1.0}, Vec3{-2.0, 0.5, -1e-3}}) {
+    const SphericalRegion r = directions_through({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}}, x);
+    const Vec3 w{0, 0, 1}, a1{1, 0, 0}, a2{0, 1, 0}, b = normalized(Vec3{0.2, -0.1, 1});
+    const auto pair = linear_exitance_moments(r, w, a1, a2, b);
+    CHECK(pair[0].value == Approx(linear_exitance_moment(r, w, a1, b).value).epsilon(1e-13));
+    CHECK(pair[1].value == Approx(linear_exitance_moment(r, w, a2, b).value).epsilon(1e-13));
+  }
 }
 
 TEST_CASE("closed box: form factor rows sum to 1 and uniform emission gives M0/(1 - rho)") {
