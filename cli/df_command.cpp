@@ -44,6 +44,7 @@ struct DfOptions {
   double reflection_tolerance = 0.01;  // DF percentage points, every sensor's ERC + IRC
   double element_size = 1.0;           // model units
   int max_refinements = 3;
+  std::vector<std::string> reflection_options_given;  // names, for the notice with --components sc
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -106,6 +107,8 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
 
 int run_df(const DfOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (opt.components == "all" && (opt.gradient || opt.refine))
+    throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
@@ -116,8 +119,12 @@ int run_df(const DfOptions& opt) {
   ModelInputs model = load_model(opt.files, sky);
   const Scene& scene = model.scene;
   const std::vector<SensorGrid>& grids = model.grids;
-  if (!opt.quiet)
+  if (!opt.quiet) {
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
+    if (opt.components == "sc")
+      for (const auto& name : opt.reflection_options_given)
+        std::cerr << "notice: " << name << " is not used: the reflected components are computed with --components all\n";
+  }
 
   const VisibilityEngine engine(scene, mode);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
@@ -146,8 +153,6 @@ int run_df(const DfOptions& opt) {
   std::optional<ReflectionResult> reflections;
   std::map<std::string, SurfaceReflectance> used_materials;
   if (opt.components == "all") {
-    if (opt.gradient || opt.refine)
-      throw Error("--gradient and --refine concern the sky component alone; add --components sc");
     std::vector<double> reflectance;
     for (const Polygon& p : scene.occluders) {
       const auto it = scene.materials.find(p.material);
@@ -331,22 +336,26 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "components by an exact-transport radiosity solution (CSV columns sc_percent, erc_percent, irc_percent, "
                  "df_percent, reflection_error_bound_percent)")
       ->check(CLI::IsMember({"sc", "all"}));
-  df->add_option("--ground-reflectance", opt->ground_reflectance,
+  CLI::Option* const ground_option = df->add_option("--ground-reflectance", opt->ground_reflectance,
                  "Reflectance of the far ground: directions below the horizon that meet no surface see rho_g E_h / pi "
                  "(default 0.2, as gensky's ground glow); the model's own ground polygons are surfaces")
       ->check(CLI::Range(0.0, 0.999999));
-  df->add_option("--reflection-tolerance", opt->reflection_tolerance,
+  CLI::Option* const tolerance_option = df->add_option("--reflection-tolerance", opt->reflection_tolerance,
                  "Target of every sensor's estimated error of ERC + IRC (DF percentage points; default 0.01): elements "
                  "are split where they contribute most until it is met or --max-refinements rounds are done")
       ->check(CLI::PositiveNumber);
-  df->add_option("--element-size", opt->element_size,
+  CLI::Option* const size_option = df->add_option("--element-size", opt->element_size,
                  "Longest element edge near the sensors and apertures (model units; default 1), growing with the "
                  "distance farther away")
       ->check(CLI::PositiveNumber);
-  df->add_option("--max-refinements", opt->max_refinements, "Rounds of element splitting at most (default 3)")
+  CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Rounds of element splitting at most (default 3)")
       ->check(CLI::Range(0, 8));
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
-  return [opt] { return run_df(*opt); };
+  return [opt, ground_option, tolerance_option, size_option, rounds_option] {
+    for (const CLI::Option* o : {ground_option, tolerance_option, size_option, rounds_option})
+      if (o->count() > 0) opt->reflection_options_given.push_back(o->get_name());
+    return run_df(*opt);
+  };
 }
 
 }  // namespace daylit::cli
