@@ -55,12 +55,15 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   const double l0 = lambert(part, n);
   if (l0 == 0) return c;
   // The moments need to be accurate against the element's irradiance, not against themselves
-  // (they vanish where the region is symmetric about e_i): 1e-9 of Lambert's term, scaled to
-  // the moments' units by the element's size over h. The representation of the exitance on the
-  // elements costs 1e-6 and more (the error estimate says how much), so digits beyond that are
-  // not worth the long double and __float128 passes, which cost 10 to 100 times the double one.
+  // (they vanish where the region is symmetric about e_i). An error δ in either costs
+  // h|∇φ_k|δ/π ≈ (h/size)δ in c_k, so δ ≤ tol·size/h with tol = 1e-9 of Lambert's term, and
+  // never below 1e-13 absolute (a coefficient of a form factor ≤ 1: slivers the cone clips leave
+  // along element edges have l0 ~ 1e-20, and their digits are nobody's). The representation of
+  // the exitance on the elements costs 1e-6 and more (the error estimate says how much), so
+  // digits beyond that are not worth the long double and __float128 passes (10 to 100 times the
+  // double one).
   const double size = std::sqrt(element.area);
-  const double tol = kTransportTolerance * std::abs(l0) * std::max(1.0, size / h);
+  const double tol = std::max(kTransportTolerance * std::abs(l0), 1e-13) * size / h;
   const auto t = linear_exitance_moments(part, w, e1, e2, n, tol);
   const double t1 = t[0].value, t2 = t[1].value;
   for (int k = 0; k < 3; ++k) {
