@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -21,6 +23,8 @@
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
 #include "simulation/sky_component.hpp"
+#include "simulation/reflected_components.hpp"
+#include "materials/surface_reflectance.hpp"
 
 namespace daylit::cli {
 
@@ -35,14 +39,78 @@ struct DfOptions {
   bool quiet = false;
   bool gradient = false, refine = false;
   double refine_tolerance = 0.01;  // DF percentage points of a cell's mean
+  // The sky component alone by default for now: the reflected components cost minutes on the
+  // office sample (see the README), which the quick-start command should not.
+  std::string components = "sc";
+  double ground_reflectance = 0.2;
+  double reflection_tolerance = 0.01;  // DF percentage points, every sensor's ERC + IRC
+  double element_size = 1.0;           // model units
+  int max_refinements = 3;
+  std::vector<std::string> reflection_options_given;  // names, for the notice with --components sc
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std::string, SurfaceReflectance>& materials,
+                                  const DfOptions& opt, double run_time_s) {
+  nlohmann::json j;
+  j["computed"] = {"sc", "erc", "irc"};
+  j["df_percent_is"] = "sc_percent + erc_percent + irc_percent";
+  j["ground_reflectance"] = opt.ground_reflectance;
+  nlohmann::json mats;
+  for (const auto& [name, m] : materials) mats[name] = {{"reflectance", m.reflectance}, {"description", m.description}};
+  j["materials"] = mats;
+  if (r.black) {
+    j["radiosity"] = "none: every surface is black and the ground reflectance is 0, so ERC = IRC = 0 exactly";
+    return j;
+  }
+  j["method"] =
+      "radiosity over every reflecting polygon, both sides, triangles of linearly varying exitance (3 nodes inside "
+      "each, the degree-2 rule's points); first bounce exact (sky and far ground through the apertures, and seen "
+      "directly through a box around the model); transport exact per element (Chen-Arvo linear luminaire over the "
+      "exactly visible part, occluders cut to the luminaire's side of its plane); ERC: far ground and surfaces seen "
+      "through apertures (weighted by their transmittance; glass: T at the element's centre direction), IRC: "
+      "surfaces seen inside; Gauss-Seidel to roundoff";
+  j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
+               {"refinement_rounds", r.refinements}, {"element_size", opt.element_size},
+               {"max_error_percent_by_round", r.error_by_round}};
+  j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
+                 {"reflectance_max", r.reflectance_max}};
+  j["error"] = {
+      {"tolerance_percent", opt.reflection_tolerance},
+      {"max_estimate_percent", r.max_error_percent},
+      {"met", r.max_error_percent <= opt.reflection_tolerance},
+      {"residual_max", r.residual_max},
+      {"how",
+       "estimate, not a rigorous bound: the residual M_h - rho(E0 + K M_h) evaluated exactly at 4 check points per "
+       "element side (centroid and near the vertices), its mean |r| per side carried through every bounce by "
+       "e = |r| + rho |K| e (the discrete form of |r|/(1 - rho_max)), then to each sensor by the magnitudes of its "
+       "coefficients; plus, through glass, the spread of T over each element's directions"}};
+  j["energy_balance"] = {
+      {"first_bounce_flux", r.flux_first_bounce},
+      {"absorbed_flux", r.flux_absorbed},
+      {"escaping_flux", r.flux_escaping},
+      {"relative_mismatch", r.balance_mismatch},
+      {"how",
+       "per unit zenith luminance: what the sky and far ground put on all surfaces = what they absorb + what leaves "
+       "them unreceived, the last from each side's own view of the others (reciprocity), independently of the rows "
+       "that carried the light; the mismatch is the mesh's and falls under refinement"}};
+  j["left_out"] = {
+      {"direct_sky_at_sensors", "sensors see the sky through the apertures only (SC); a sensor outside the model "
+                                "sees no sky directly"},
+      {"receivers_seeing_no_sky_directly", r.receivers_direct_empty},
+      {"receivers", r.receivers_direct},
+      {"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"}};
+  j["run_time_s"] = run_time_s;
+  return j;
+}
+
 int run_df(const DfOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (opt.components == "all" && (opt.gradient || opt.refine))
+    throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
@@ -53,13 +121,18 @@ int run_df(const DfOptions& opt) {
   ModelInputs model = load_model(opt.files, sky);
   const Scene& scene = model.scene;
   const std::vector<SensorGrid>& grids = model.grids;
-  if (!opt.quiet)
+  if (!opt.quiet) {
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
+    if (opt.components == "sc")
+      for (const auto& name : opt.reflection_options_given)
+        std::cerr << "notice: " << name << " is not used: the reflected components are computed with --components all\n";
+  }
 
   const VisibilityEngine engine(scene, mode);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
 
   std::vector<GridReport> reports;
+  double reflections_time_s = 0;
   for (const auto& grid : grids) {
     const auto tg = std::chrono::steady_clock::now();
     ProgressBar bar("df " + grid.name, grid.sensors.size(), show_progress);
@@ -78,6 +151,47 @@ int run_df(const DfOptions& opt) {
     reports.push_back(std::move(r));
   }
 
+  // ---- Reflected components (DESIGN.md §4), over all grids at once: one radiosity solution.
+  std::optional<ReflectionResult> reflections;
+  std::map<std::string, SurfaceReflectance> used_materials;
+  if (opt.components == "all") {
+    std::vector<double> reflectance;
+    for (const Polygon& p : scene.occluders) {
+      const auto it = scene.materials.find(p.material);
+      const Material* m = it == scene.materials.end() ? nullptr : &it->second;
+      const SurfaceReflectance r = surface_reflectance(m);
+      reflectance.push_back(r.reflectance);
+      used_materials.emplace(m ? m->name : p.material.empty() ? "void" : p.material, r);
+    }
+    ReflectionOptions ro;
+    ro.sky = sky;
+    ro.mode = mode;
+    ro.ground_reflectance = opt.ground_reflectance;
+    ro.tolerance_percent = opt.reflection_tolerance;
+    ro.element_size = opt.element_size;
+    ro.max_refinements = opt.max_refinements;
+    std::vector<const SensorGrid*> grid_ptrs;
+    for (const auto& g : grids) grid_ptrs.push_back(&g);
+    const auto tr = std::chrono::steady_clock::now();
+    std::size_t total = 0;
+    for (const auto& g : grids) total += g.sensors.size();
+    ProgressBar bar("reflections", total, show_progress);
+    reflections = reflected_components(scene, reflectance, engine, grid_ptrs, ro, [&](std::size_t done) { bar.update(done); });
+    reflections_time_s = seconds_since(tr);
+    if (!opt.quiet && reflections->black)
+      std::cerr << "notice: nothing reflects (every surface black and --ground-reflectance 0): ERC = IRC = 0, no "
+                   "radiosity work done\n";
+    for (std::size_t g = 0; g < reports.size(); ++g) {
+      GridReport& r = reports[g];
+      const SensorReflections& sr = reflections->grids[g];
+      r.erc_percent = sr.erc_percent;
+      r.irc_percent = sr.irc_percent;
+      r.reflection_error_percent = sr.error_percent;
+      for (std::size_t i = 0; i < r.df_percent.size(); ++i) r.df_percent[i] = r.sc_percent[i] + sr.erc_percent[i] + sr.irc_percent[i];
+      r.statistics = grid_statistics(r.df_percent);
+    }
+  }
+
   StagedOutputs outputs;
   if (!opt.out.empty()) {
     write_csv(outputs.stage(opt.out), reports);
@@ -89,12 +203,15 @@ int run_df(const DfOptions& opt) {
   summary["sky"] = std::string(sky_model_name(sky));
   summary["geometry"] = opt.geometry;
   summary["threads"] = threads;
-  summary["components"] = {
-      {"computed", {"sc"}},
-      {"left_out",
-       {{"erc", "externally reflected component: not computed (obstructions are black)"},
-        {"irc", "internally reflected component: not computed (room surfaces are black)"}}},
-      {"df_percent_is", "sc_percent"}};
+  if (reflections)
+    summary["components"] = reflection_summary(*reflections, used_materials, opt, reflections_time_s);
+  else
+    summary["components"] = {
+        {"computed", {"sc"}},
+        {"left_out",
+         {{"erc", "externally reflected component: not computed (--components sc)"},
+          {"irc", "internally reflected component: not computed (--components sc)"}}},
+        {"df_percent_is", "sc_percent"}};
   if (model.site) summary["site"] = site_json(*model.site, opt.files.site);
   if (model.context) summary["context"] = context_json(*model.context, opt.files.context);
   summary["scene"] = scene_json(scene, engine);
@@ -111,6 +228,20 @@ int run_df(const DfOptions& opt) {
                                 {"share_at_or_above_df_percent", shares},
                                 {"run_time_s", r.run_time_s},
                                 {"left_out", counters_json(r.counters)}});
+    if (!r.erc_percent.empty()) {
+      nlohmann::json per;
+      const double mean_df = s.mean;
+      for (const auto& [name, values] : {std::pair<const char*, const std::vector<double>*>{"sc_percent", &r.sc_percent},
+                                         {"erc_percent", &r.erc_percent},
+                                         {"irc_percent", &r.irc_percent},
+                                         {"reflection_error_bound_percent", &r.reflection_error_percent}}) {
+        const GridStatistics c = grid_statistics(*values);
+        per[name] = {{"mean", c.mean}, {"median", c.median}, {"min", c.min}, {"max", c.max},
+                     {"uniformity_min_over_mean", c.min_over_mean},
+                     {"share_of_mean_df", mean_df > 0 ? c.mean / mean_df : 0.0}};
+      }
+      summary["grids"].back()["components"] = per;
+    }
     if (r.refinement) {
       const GridRefinement& f = *r.refinement;
       summary["grids"].back()["refinement"] = {
@@ -157,7 +288,8 @@ std::function<int()> add_df_command(CLI::App& app) {
       "Computes the daylight factor at every sensor of the grids under a CIE overcast (or uniform) sky.\n"
       "Each aperture is clipped exactly against the occluders as seen from each sensor, and the sky is\n"
       "integrated over what stays visible in closed form: no rays, no noise. Reported: the sky component\n"
-      "(SC); externally and internally reflected components are not computed yet, so DF = SC.\n"
+      "(SC) and, with --components all, the externally and internally reflected components (ERC, IRC)\n"
+      "from a radiosity solution with exact transport, with an estimate of their error per sensor.\n"
       "With --site and --context, neighbouring buildings given as GeoJSON footprints (WGS84, with a\n"
       "height property) are placed in the model frame and extruded into opaque prisms; those that cannot\n"
       "be seen through any aperture, and those smaller than --context-min-angle from every aperture, are\n"
@@ -201,8 +333,31 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--refine-tolerance", opt->refine_tolerance,
                  "Estimated error of a cell's mean DF above which --refine splits it (DF percentage points; default 0.01)")
       ->check(CLI::PositiveNumber);
+  df->add_option("--components", opt->components,
+                 "sc (default): the sky component alone (DF = SC); all: SC + ERC + IRC, the reflected "
+                 "components by an exact-transport radiosity solution (CSV columns sc_percent, erc_percent, irc_percent, "
+                 "df_percent, reflection_error_bound_percent)")
+      ->check(CLI::IsMember({"sc", "all"}));
+  CLI::Option* const ground_option = df->add_option("--ground-reflectance", opt->ground_reflectance,
+                 "Reflectance of the far ground: directions below the horizon that meet no surface see rho_g E_h / pi "
+                 "(default 0.2, as gensky's ground glow); the model's own ground polygons are surfaces")
+      ->check(CLI::Range(0.0, 0.999999));
+  CLI::Option* const tolerance_option = df->add_option("--reflection-tolerance", opt->reflection_tolerance,
+                 "Target of every sensor's estimated error of ERC + IRC (DF percentage points; default 0.01): elements "
+                 "are split where they contribute most until it is met or --max-refinements rounds are done")
+      ->check(CLI::PositiveNumber);
+  CLI::Option* const size_option = df->add_option("--element-size", opt->element_size,
+                 "Longest element edge near the sensors and apertures (model units; default 1), growing with the "
+                 "distance farther away")
+      ->check(CLI::PositiveNumber);
+  CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Rounds of element splitting at most (default 3)")
+      ->check(CLI::Range(0, 8));
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
-  return [opt] { return run_df(*opt); };
+  return [opt, ground_option, tolerance_option, size_option, rounds_option] {
+    for (const CLI::Option* o : {ground_option, tolerance_option, size_option, rounds_option})
+      if (o->count() > 0) opt->reflection_options_given.push_back(o->get_name());
+    return run_df(*opt);
+  };
 }
 
 }  // namespace daylit::cli

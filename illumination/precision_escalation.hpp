@@ -8,6 +8,8 @@
 #include <array>
 #include <vector>
 
+#include <limits>
+
 #include "illumination/real_vector.hpp"  // DAYLIT_HAVE_FLOAT128
 #include "illumination/tracked_sum.hpp"
 
@@ -28,6 +30,9 @@ struct Attempt {
   V value;
   double relative_error;
   double condition = 1;
+  // Its estimate of the absolute error, where a caller may accept that instead (escalate's
+  // absolute_tolerance); +∞ where the kernel has none.
+  double absolute_error = std::numeric_limits<double>::infinity();
 };
 
 // What escalate() returns: the first attempt whose estimate met the tolerance (or the last rung's),
@@ -42,11 +47,14 @@ struct Escalated {
 };
 
 // Calls attempt(R{}) for R = double (unless `first` is higher), long double, __float128, and
-// returns the first whose relative_error ≤ tolerance; the last rung's result otherwise (its
-// estimate then says how far it is from the tolerance). `attempt` may keep state between calls
-// (a later rung may tighten what it asks of itself from what an earlier one measured).
+// returns the first whose relative_error ≤ tolerance, or whose absolute_error ≤
+// absolute_tolerance where that is positive (a result that is small beside what the caller adds
+// it to needs no relative accuracy: radiosity's transport, where an element's share of a
+// receiver's irradiance matters only to a fraction of the total); the last rung's result
+// otherwise (its estimate then says how far it is from the tolerance). `attempt` may keep state
+// between calls (a later rung may tighten what it asks of itself from what an earlier one measured).
 template <class F>
-auto escalate(F&& attempt, double tolerance, int first = double_precision)
+auto escalate(F&& attempt, double tolerance, int first = double_precision, double absolute_tolerance = 0)
     -> Escalated<decltype(attempt(double{}).value)> {
   using V = decltype(attempt(double{}).value);
   bool have_condition = false;
@@ -58,12 +66,12 @@ auto escalate(F&& attempt, double tolerance, int first = double_precision)
   if (first <= double_precision) {
     const auto d = attempt(double{});
     const auto r = take(d, double_precision);
-    if (d.relative_error <= tolerance) return r;
+    if (d.relative_error <= tolerance || (absolute_tolerance > 0 && d.absolute_error <= absolute_tolerance)) return r;
   }
   const auto l = attempt((long double)0);
 #if DAYLIT_HAVE_FLOAT128
   const auto r = take(l, long_double_precision);
-  if (l.relative_error <= tolerance) return r;
+  if (l.relative_error <= tolerance || (absolute_tolerance > 0 && l.absolute_error <= absolute_tolerance)) return r;
   return take(attempt(real::quad(0)), float128_precision);
 #else
   return take(l, long_double_precision);
@@ -83,6 +91,17 @@ double tracked_condition(const Container& sums) {
   double k = 1;  // no element cancels below 1 (tracked_sum.hpp)
   for (const auto& s : sums) k = std::max(k, tracked_condition(s));
   return k;
+}
+
+template <class R>
+double tracked_magnitude(const real::Tracked<R>& s) {
+  return double(s.magnitude);
+}
+template <class Container>
+double tracked_magnitude(const Container& sums) {
+  double m = 0;
+  for (const auto& s : sums) m = std::max(m, tracked_magnitude(s));
+  return m;
 }
 
 template <class R>
@@ -106,18 +125,20 @@ std::array<double, N> to_double(const std::array<real::Tracked<R>, N>& sums) {
 // escalate() for kernels whose compute(R{}) returns tracked sums, with the estimate
 // (10 + order)·u·κ (u the unit roundoff of R). The order enters because the terms of an order-n
 // moment carry n-th powers, whose rounding is n·u relative: a 1e-4 rad luminaire at n = 1000 has
-// κ ≈ 60 and an error of 1e-11 in double, 1e-16 in long double.
+// κ ≈ 60 and an error of 1e-11 in double, 1e-16 in long double. The absolute estimate is
+// (10 + order)·u·Σ|terms| (the largest element's, for several sums).
 template <class F>
-auto escalate_tracked(int order, F&& compute, double tolerance = 1e-13) {
+auto escalate_tracked(int order, F&& compute, double tolerance = 1e-13, double absolute_tolerance = 0) {
   return escalate(
       [&](auto zero) {
         using R = decltype(zero);
         const auto sums = compute(zero);
         const double kappa = tracked_condition(sums);
         const double u = double(real::unit_roundoff<R>());
-        return Attempt<decltype(to_double(sums))>{to_double(sums), (10.0 + order) * u * kappa, kappa};
+        return Attempt<decltype(to_double(sums))>{to_double(sums), (10.0 + order) * u * kappa, kappa,
+                                                  (10.0 + order) * u * tracked_magnitude(sums)};
       },
-      tolerance);
+      tolerance, double_precision, absolute_tolerance);
 }
 
 }  // namespace daylit

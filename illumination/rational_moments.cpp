@@ -1,6 +1,7 @@
 #include "illumination/rational_moments.hpp"
 
 #include <cmath>
+#include <array>
 #include <limits>
 #include <map>
 #include <string>
@@ -528,13 +529,47 @@ Tracked<R> tensor_moment(const SphericalRegion& region, const Vec3& w_in, const 
 
 }  // namespace
 
-RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b) {
+RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
+                                      double absolute_tolerance) {
   check_side(region, w);
   if (!is_finite(a) || !is_finite(b)) throw Error("factor axes must be finite");
-  RationalMoment m =
-      escalate_tracked(2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); });
+  RationalMoment m = escalate_tracked(
+      2, [&](auto r) { return tensor_moment<decltype(r)>(region, w, a, b, nullptr); }, 1e-13, absolute_tolerance * norm(w));
   m.value /= norm(w);
   return m;
+}
+
+// Both moments T^{2;1}(a1, b) and T^{2;1}(a2, b) in one pass over the edges: the arc's frame,
+// its G table and the η integral (Clausen functions, most of the cost) are shared.
+template <class R>
+std::array<Tracked<R>, 2> tensor_moment_pair(const SphericalRegion& region, const Vec3& w_in, const Vec3& a1_in,
+                                             const Vec3& a2_in, const Vec3& b_in) {
+  const real::V3<R> w = real::unit<R>(w_in), a1(a1_in), a2(a2_in), b(b_in);
+  Tracked<R> s1, s2;
+  for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
+    const WFrameArc<R> f(arc, w);
+    const GTable<R> G(f, 3, -1, 3);
+    Tracked<R> eta_w = base_moment_edge(f);  // −(w·m) ∫ η ds
+    eta_w.value = -eta_w.value;
+    const TensorEdge<R> e{f, G, w, eta_w};
+    s1 += e.m3(a1, b);
+    s2 += e.m3(a2, b);
+  });
+  return {s1 / R(2), s2 / R(2)};
+}
+
+std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,
+                                                      const Vec3& a2, const Vec3& b, double absolute_tolerance) {
+  check_side(region, w);
+  if (!is_finite(a1) || !is_finite(a2) || !is_finite(b)) throw Error("factor axes must be finite");
+  // The pair escalates together (the one ladder, precision_escalation.hpp): its κ is the larger
+  // of the two, its absolute estimate from the larger magnitude.
+  const Escalated<std::array<double, 2>> pair = escalate_tracked(
+      2, [&](auto r) { return tensor_moment_pair<decltype(r)>(region, w, a1, a2, b); }, 1e-13,
+      absolute_tolerance * norm(w));
+  std::array<RationalMoment, 2> out;
+  for (int i = 0; i < 2; ++i) out[i] = {pair.value[i] / norm(w), pair.relative_error, pair.precision, pair.condition};
+  return out;
 }
 
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,

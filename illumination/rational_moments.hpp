@@ -14,6 +14,7 @@
 // long double, and if need be in __float128 (Cl2 by its series there, clausen.hpp), as
 // moments.hpp does. The estimate is returned with the value.
 
+#include <array>
 #include <vector>
 
 #include "geometry/spherical_region.hpp"
@@ -110,8 +111,19 @@ RationalMoment rational_moment_n11(const SphericalRegion& region, const Vec3& v,
 // and T^{2;1}(a, b) = ½ Σ_edges ∫ M³, T^{3;2}(a, b, c) = ½ Σ_edges ∫ M⁴ (eqs. 64, 75 with n = −m).
 // Irradiance from exitance (a·u)/(w·u) is T^{2;1}(a, n)/π (eq. 67), from h² (e_i·u)(e_j·u)/(w·u)²
 // it is h² T^{3;2}(e_i, e_j, n)/π (eqs. 70–77). w non-zero (normalised here).
-RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b);
+// `absolute_tolerance` > 0: the double pass is accepted where its estimated absolute error is at
+// most that, even if the moment itself is small against its terms (radiosity sums many elements'
+// moments, each small against the element's own irradiance where the region is symmetric about
+// the axis a: relative accuracy of the moment alone is not what the sum needs; relative_error is
+// then infinite for a value of exactly 0).
+RationalMoment linear_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
+                                      double absolute_tolerance = 0);
 RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Vec3& w, const Vec3& a, const Vec3& b,
                                          const Vec3& c);
+// linear_exitance_moment(region, w, a1, b, tol) and (region, w, a2, b, tol) in one pass over the
+// edges (the Clausen functions of the η integral shared): the two in-plane axes of a linearly
+// varying element (radiosity). Same values, same accuracy; the pair escalates together.
+std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,
+                                                      const Vec3& a2, const Vec3& b, double absolute_tolerance = 0);
 
 }  // namespace daylit

@@ -17,6 +17,9 @@ namespace daylit::cli {
 struct GridReport {
   const SensorGrid* grid = nullptr;
   std::vector<double> sc_percent;
+  // With reflected components (df --components all): ERC, IRC and the estimated error of their
+  // sum, per sensor; empty for a sky-component-only run.
+  std::vector<double> erc_percent, irc_percent, reflection_error_percent;
   std::vector<double> df_percent;
   // What the falsecolour image maps: df_percent in % unless `shown` is set (`daylit illuminance`
   // shows lux).
@@ -31,7 +34,8 @@ struct GridReport {
 };
 
 // One row per sensor, grids in the order given: grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent;
-// with gradients, ddf_dx,ddf_dy,ddf_dz; with refinement, added,cell_area, and the added sensors
+// with reflected components grid,index,x,y,z,dx,dy,dz,sc_percent,erc_percent,irc_percent,
+// df_percent,reflection_error_bound_percent (df_percent last but one); with gradients, ddf_dx,ddf_dy,ddf_dz; with refinement, added,cell_area, and the added sensors
 // after each grid's own (indices continuing; a split sensor's cell_area is 0). The columns are
 // those of the first report (df computes gradients and refinements for all grids or none).
 void write_csv(const std::string& path, const std::vector<GridReport>& reports);

@@ -9,7 +9,8 @@ samples=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 dir=$samples/office
-model=(--scene "$dir/scene.rad" --apertures "$dir/apertures.rad")
+# The gradient is of the sky component: --components sc (reflections refuse --gradient).
+model=(--scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --components sc)
 
 # Sensors at p (which sees the sky through the glazed window, past its reveals) and at p ± h, p ± h/2
 # along each axis, h = 1e-3 m: the extrapolated differences are good to ~1e-10 (h⁴ truncation,

@@ -12,7 +12,8 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 office=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$samples/office/grid.pts")
-"$daylit" df "${office[@]}" --out "$work/df.csv" --quiet || fail "df on the office"
+# The sky illuminance is the sky component's: --components sc.
+"$daylit" df "${office[@]}" --components sc --out "$work/df.csv" --quiet || fail "df on the office"
 "$daylit" illuminance "${office[@]}" --diffuse-horizontal 10000 --out "$work/lux.csv" --summary "$work/lux.json" \
   --image "$work/lux.png" --quiet || fail "illuminance on the office"
 [ -s "$work/lux.png" ] || fail "no image"

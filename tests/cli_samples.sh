@@ -3,6 +3,8 @@
 # agree to roundoff on these well-conditioned scenes, and the certified exact path reproduces the
 # all-rational reference (on every 40th sensor: the reference is slow).
 set -eu
+# These checks are of the sky component (geometry modes against each other), so they run with
+# --components sc; the reflected components have tests/cli_reflections.sh.
 daylit=$1
 samples=$2
 work=$(mktemp -d)
@@ -24,11 +26,11 @@ for sample in office hall; do
   for geometry in exact float rational; do
     grid=$dir/grid.pts
     [ "$geometry" = rational ] && grid=$work/$sample-subset.pts
-    "$daylit" df --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$grid" \
+    "$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$grid" \
       --geometry "$geometry" --out "$work/$sample-$geometry.csv" --summary "$work/$sample-$geometry.json" --quiet
     if grep -qi nan "$work/$sample-$geometry.csv"; then echo "NaN in $sample ($geometry)"; exit 1; fi
   done
-  "$daylit" df --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$work/$sample-subset.pts" \
+  "$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$work/$sample-subset.pts" \
     --out "$work/$sample-subset-exact.csv" --quiet
   largest_difference "$sample exact/float" "$work/$sample-exact.csv" "$work/$sample-float.csv" 1e-9
   largest_difference "$sample exact/rational" "$work/$sample-subset-exact.csv" "$work/$sample-rational.csv" 1e-12
@@ -39,18 +41,18 @@ done
 # without --site is refused.
 dir=$samples/city
 city=(--scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --site "$dir/site.json" --context "$dir/buildings.geojson")
-"$daylit" df "${city[@]}" --grid "$dir/grid.pts" --out "$work/city.csv" --summary "$work/city.json" --quiet
+"$daylit" df --components sc "${city[@]}" --grid "$dir/grid.pts" --out "$work/city.csv" --summary "$work/city.json" --quiet
 for expected in '"buildings_read": 11' '"placed": 4' '"holding_the_model": 1' '"below_the_horizon": 1' \
                 '"behind_the_apertures": 3' '"smaller_than_min_angle": 2'; do
   grep -q "$expected" "$work/city.json" || { echo "city summary lacks $expected"; exit 1; }
 done
 awk 'NR % 20 == 1' "$dir/grid.pts" > "$work/city-subset.pts"
 for geometry in exact rational; do
-  "$daylit" df "${city[@]}" --grid "$work/city-subset.pts" --geometry "$geometry" \
+  "$daylit" df --components sc "${city[@]}" --grid "$work/city-subset.pts" --geometry "$geometry" \
     --out "$work/city-subset-$geometry.csv" --quiet
 done
 largest_difference "city exact/rational" "$work/city-subset-exact.csv" "$work/city-subset-rational.csv" 1e-12
-if "$daylit" df --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$dir/grid.pts" \
+if "$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$dir/grid.pts" \
      --context "$dir/buildings.geojson" --out "$work/no-site.csv" --quiet 2> "$work/no-site.err"; then
   echo "city: --context without --site was accepted"; exit 1
 fi

@@ -1,0 +1,30 @@
+#include "simulation/radiosity_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace daylit {
+
+RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
+                                  const std::vector<double>& source, bool absolute, int max_sweeps) {
+  RadiositySolution s;
+  s.exitance = source;
+  const std::size_t n = rows.size();
+  for (s.sweeps = 1; s.sweeps <= max_sweeps; ++s.sweeps) {
+    double change = 0, size = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double e = 0;
+      for (const auto& [j, k] : rows[i]) e += (absolute ? std::abs(k) : k) * s.exitance[j];
+      const double m = source[i] + reflectance[i] * e;
+      change = std::max(change, std::abs(m - s.exitance[i]));
+      size = std::max(size, std::abs(m));
+      s.exitance[i] = m;
+    }
+    s.last_change = size > 0 ? change / size : 0;
+    if (change <= 1e-15 * size) break;
+  }
+  s.sweeps = std::min(s.sweeps, max_sweeps);
+  return s;
+}
+
+}  // namespace daylit

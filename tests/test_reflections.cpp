@@ -1,0 +1,352 @@
+// The reflected components (DESIGN.md §4): mesh, element transport, radiosity solution, sensors'
+// ERC and IRC, error estimate and energy balance, each against an independent reference.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "illumination/hemisphere_clip.hpp"
+#include "illumination/rational_moments.hpp"
+#include "reference_quadrature.hpp"
+#include "simulation/element_transport.hpp"
+#include "simulation/radiosity_solver.hpp"
+#include "simulation/reflected_components.hpp"
+#include "test_scenes.hpp"
+
+using namespace daylit;
+using daylit::test::polygon;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Howell's configuration factors (DESIGN.md §9), element at the origin with normal +z.
+double howell_parallel(double a, double b, double c) {
+  const double A = a / c, B = b / c;
+  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+         (2 * kPi);
+}
+double howell_perpendicular(double a, double b, double c) {
+  const double s = std::hypot(b, c);
+  return (std::atan(a / b) - (b / s) * std::atan(a / s)) / (2 * kPi);
+}
+
+RadiosityMesh mesh_of(const std::vector<Vec3>& rect, double edge) {
+  return mesh_surfaces({polygon(rect)}, {0.5}, [=](const RadiosityElement&) { return edge; });
+}
+
+// Σ over the elements of a meshed luminaire of the coefficients times the node values of M, each
+// element unobstructed (its own directions).
+double mesh_irradiance(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n,
+                       const std::function<double(const Vec3&)>& exitance) {
+  double e = 0;
+  for (const auto& el : mesh.elements) {
+    const auto c = element_irradiance_coefficients(SphericalRegion{}, true, el, x, n);
+    for (int k = 0; k < 3; ++k) e += c[k] * exitance(el.nodes[k]);
+  }
+  return e;
+}
+
+// The same with the whole luminaire's directions (cut to the receiver's hemisphere) clipped to
+// each element's cone, as behind occluders.
+double mesh_irradiance_clipped(const RadiosityMesh& mesh, const std::vector<Vec3>& luminaire, const Vec3& x,
+                               const Vec3& n, const std::function<double(const Vec3&)>& exitance) {
+  const SphericalRegion whole = clip_to_hemisphere(directions_through(luminaire, x), n);
+  double e = 0;
+  for (const auto& el : mesh.elements) {
+    const auto c = element_irradiance_coefficients(whole, false, el, x, n);
+    for (int k = 0; k < 3; ++k) e += c[k] * exitance(el.nodes[k]);
+  }
+  return e;
+}
+
+Scene box_scene(double w, double d, double h, bool outward_normals = false) {
+  Scene s;
+  std::vector<std::vector<Vec3>> faces = {
+      {{0, 0, 0}, {w, 0, 0}, {w, d, 0}, {0, d, 0}},  {{0, 0, h}, {0, d, h}, {w, d, h}, {w, 0, h}},
+      {{0, 0, 0}, {0, 0, h}, {w, 0, h}, {w, 0, 0}},  {{0, d, 0}, {w, d, 0}, {w, d, h}, {0, d, h}},
+      {{0, 0, 0}, {0, d, 0}, {0, d, h}, {0, 0, h}},  {{w, 0, 0}, {w, 0, h}, {w, d, h}, {w, d, 0}}};
+  for (auto& f : faces) {
+    if (outward_normals) std::reverse(f.begin(), f.end());
+    s.occluders.push_back(polygon(f, "face"));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("mesh: the nodal basis is Lagrange's and the elements tile the polygon") {
+  const RadiosityMesh mesh = mesh_of({{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {0, 2, 0}}, 0.7);
+  double area = 0;
+  for (const auto& e : mesh.elements) {
+    area += e.area;
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) CHECK(e.basis(k, e.nodes[j]) == Approx(k == j ? 1.0 : 0.0).margin(1e-14));
+    CHECK(dot(cross(e.vertices[1] - e.vertices[0], e.vertices[2] - e.vertices[0]), e.normal) > 0);
+  }
+  CHECK(area == Approx(6.0).epsilon(1e-14));
+  CHECK(mesh.max_level >= 2);
+}
+
+TEST_CASE("element transport: uniform exitance gives Howell's configuration factors to 1e-12") {
+  // A luminaire of unit exitance irradiates with E = F (Howell's F = E/(πL), M = πL).
+  const Vec3 x{0, 0, 0}, n{0, 0, 1};
+  const auto one = [](const Vec3&) { return 1.0; };
+  SECTION("parallel rectangle") {
+    const std::vector<Vec3> rect{{0, 0, 1.5}, {0, 2, 1.5}, {3, 2, 1.5}, {3, 0, 1.5}};
+    const RadiosityMesh mesh = mesh_of(rect, 0.8);
+    const double f = howell_parallel(3, 2, 1.5);
+    CHECK(mesh_irradiance(mesh, x, n, one) == Approx(f).epsilon(1e-12));
+    CHECK(mesh_irradiance_clipped(mesh, rect, x, n, one) == Approx(f).epsilon(1e-12));
+  }
+  SECTION("perpendicular rectangle") {
+    const std::vector<Vec3> rect{{0, 1.2, 0}, {2, 1.2, 0}, {2, 1.2, 0.9}, {0, 1.2, 0.9}};
+    const RadiosityMesh mesh = mesh_of(rect, 0.5);
+    const double f = howell_perpendicular(2, 1.2, 0.9);
+    CHECK(mesh_irradiance(mesh, x, n, one) == Approx(f).epsilon(1e-12));
+    CHECK(mesh_irradiance_clipped(mesh, rect, x, n, one) == Approx(f).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("element transport: linear exitance against long-double quadrature of the area integral to 1e-10") {
+  // M(y) = 2 + 0.7 y_x − 0.4 y_y + 0.3 y_z on a tilted rectangle; the elements' linear
+  // interpolants reproduce it exactly, so the sum over them is the exact irradiance.
+  const Vec3 o{-1, 0.5, 1}, e1{2, 0.3, 0.2}, e2{0.1, 1.5, 0.9};
+  const std::vector<Vec3> rect{o, o + e1, o + e1 + e2, o + e2};
+  const auto m = [](const Vec3& y) { return 2 + 0.7 * y.x - 0.4 * y.y + 0.3 * y.z; };
+  const Vec3 x{0.2, -0.3, -0.6}, n = normalized(Vec3{0.1, 0.2, 1});
+  const RadiosityMesh mesh = mesh_of(rect, 0.6);
+  using test::LVec3;
+  const LVec3 lx = test::lvec(x), ln = test::lvec(n);
+  const Vec3 w = normalized(cross(e1, e2));
+  const LVec3 lw = test::lvec(w);
+  const long double ref = test::integrate_parallelogram(
+      test::lvec(o), test::lvec(e1), test::lvec(e2), [&](const LVec3& y) {
+        const LVec3 d{y.x - lx.x, y.y - lx.y, y.z - lx.z};
+        const long double r2 = d.x * d.x + d.y * d.y + d.z * d.z;
+        const long double cr = (d.x * ln.x + d.y * ln.y + d.z * ln.z) / std::sqrt(r2);
+        const long double cl = std::abs(d.x * lw.x + d.y * lw.y + d.z * lw.z) / std::sqrt(r2);
+        const long double my = 2 + 0.7L * y.x - 0.4L * y.y + 0.3L * y.z;
+        return my * cr * cl / (3.141592653589793238462643383279502884L * r2);
+      });
+  CHECK(mesh_irradiance(mesh, x, n, m) == Approx(double(ref)).epsilon(1e-10));
+  CHECK(mesh_irradiance_clipped(mesh, rect, x, n, m) == Approx(double(ref)).epsilon(1e-10));
+}
+
+TEST_CASE("linear_exitance_moments: the pair equals two single moments") {
+  // A near and a grazing receiver (the pair shares the edges' Clausen functions, nothing else).
+  for (const Vec3& x : {Vec3{0.3, 0.2, -1.0}, Vec3{-2.0, 0.5, -1e-3}}) {
+    const SphericalRegion r = directions_through({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}}, x);
+    const Vec3 w{0, 0, 1}, a1{1, 0, 0}, a2{0, 1, 0}, b = normalized(Vec3{0.2, -0.1, 1});
+    const auto pair = linear_exitance_moments(r, w, a1, a2, b);
+    CHECK(pair[0].value == Approx(linear_exitance_moment(r, w, a1, b).value).epsilon(1e-13));
+    CHECK(pair[1].value == Approx(linear_exitance_moment(r, w, a2, b).value).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("closed box: form factor rows sum to 1 and uniform emission gives M0/(1 - rho)") {
+  for (bool outward : {false, true}) {
+    const Scene scene = box_scene(4, 5, 3, outward);
+    const VisibilityEngine engine(scene, GeometryMode::exact);
+    ReflectionOptions o;
+    o.element_size = 1.6;
+    const double rho = 0.7;
+    const RadiositySystem sys = radiosity_system(scene, std::vector<double>(6, rho), engine, {}, o);
+    REQUIRE(sys.rows.size() == 6 * sys.mesh.elements.size());
+    std::vector<double> source(sys.rows.size(), 0.0);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      // The inner side: the one whose normal points into the box.
+      const auto& el = sys.mesh.elements[u / 6];
+      const int side = int(u / 3 % 2);
+      const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
+      const bool inner = dot(n, Vec3{2, 2.5, 1.5} - el.nodes[u % 3]) > 0;
+      double f = 0;
+      for (const auto& [j, c] : sys.rows[u]) f += c;
+      CHECK(f == Approx(inner ? 1.0 : 0.0).margin(1e-12));
+      // Inside a closed box no sky and no ground; outside, both.
+      if (inner)
+        CHECK(sys.first_bounce[u] == 0);
+      else
+        CHECK(sys.first_bounce[u] > 0);
+      source[u] = inner ? 1.0 : 0.0;
+    }
+    const RadiositySolution sol = solve_radiosity(sys.rows, sys.reflectance, source);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      // Outside, nothing emits and nothing is seen: 0, up to the slivers of the box that a node
+      // rounded 1e-15 off its face sees at grazing incidence (measured: coefficients ~1e-33).
+      if (source[u] == 1.0)
+        CHECK(sol.exitance[u] == Approx(1 / (1 - rho)).epsilon(1e-12));
+      else
+        CHECK(std::abs(sol.exitance[u]) < 1e-25);
+    }
+  }
+}
+
+TEST_CASE("parallel plates: the irradiance grows towards M/(1 - rho1 rho2) as the plates widen") {
+  // Plate 1 (z = 0, facing up) emits M0 = 1; plate 2 (z = 1, facing down). For infinite plates
+  // M1 = 1 + rho1 M2, M2 = rho2 M1, so the irradiance on plate 2 is M1 = 1/(1 - rho1 rho2). For
+  // half-width W, with F(y) the configuration factor from a point y of one plate to the other
+  // (Howell, four rectangles) and F_min = F(corner): M1 ≤ 1/(1 - rho1 rho2) everywhere, and
+  // min M1 ≥ 1 + rho1 rho2 F_min² min M1, so the irradiance E at a node p of plate 2 obeys
+  //     F(p) / (1 - rho1 rho2 F_min²) ≤ E < 1/(1 - rho1 rho2),
+  // and it must grow with W.
+  const double rho1 = 0.6, rho2 = 0.8, limit = 1 / (1 - rho1 * rho2);
+  double previous = 0;
+  for (double W : {1.0, 3.0, 10.0}) {
+    Scene s;
+    s.occluders.push_back(polygon({{-W, -W, 0}, {W, -W, 0}, {W, W, 0}, {-W, W, 0}}, "plate1"));
+    s.occluders.push_back(polygon({{-W, -W, 1}, {-W, W, 1}, {W, W, 1}, {W, -W, 1}}, "plate2"));
+    const VisibilityEngine engine(s, GeometryMode::exact);
+    ReflectionOptions o;
+    o.element_size = W / 2;
+    o.ground_reflectance = 0;
+    const RadiositySystem sys = radiosity_system(s, {rho1, rho2}, engine, {}, o);
+    std::vector<double> source(sys.rows.size(), 0.0);
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      const auto& el = sys.mesh.elements[u / 6];
+      const Vec3 n = (u / 3 % 2 == 0) ? el.normal : -1.0 * el.normal;
+      if (el.surface == 0 && n.z > 0) source[u] = 1;
+    }
+    const RadiositySolution sol = solve_radiosity(sys.rows, sys.reflectance, source);
+    // The irradiance on plate 2 at the node nearest its centre, from its row.
+    double best = 1e300, e = 0;
+    Vec3 at{};
+    for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+      const auto& el = sys.mesh.elements[u / 6];
+      const Vec3 n = (u / 3 % 2 == 0) ? el.normal : -1.0 * el.normal;
+      const Vec3 p = el.nodes[u % 3];
+      if (el.surface != 1 || n.z > 0 || norm(p - Vec3{0, 0, 1}) >= best) continue;
+      best = norm(p - Vec3{0, 0, 1});
+      at = p;
+      e = 0;
+      for (const auto& [j, c] : sys.rows[u]) e += c * sol.exitance[j];
+    }
+    const double f_at = howell_parallel(W - at.x, W - at.y, 1) + howell_parallel(W + at.x, W - at.y, 1) +
+                        howell_parallel(W - at.x, W + at.y, 1) + howell_parallel(W + at.x, W + at.y, 1);
+    const double f_min = howell_parallel(2 * W, 2 * W, 1);
+    CHECK(e > previous);
+    CHECK(e < limit);
+    CHECK(e >= f_at / (1 - rho1 * rho2 * f_min * f_min));
+    previous = e;
+  }
+}
+
+TEST_CASE("reflected components: bad reflectances are refused") {
+  const Scene scene = box_scene(1, 1, 1);
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  ReflectionOptions o;
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, 1.0), engine, {}, o),
+                    Catch::Contains("outside [0, 1)") && Catch::Contains("test:1"));
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, -0.1), engine, {}, o),
+                    Catch::Contains("outside [0, 1)"));
+  o.ground_reflectance = 1;
+  CHECK_THROWS_WITH(reflected_components(scene, std::vector<double>(6, 0.5), engine, {}, o),
+                    Catch::Contains("ground reflectance"));
+}
+
+TEST_CASE("reflected components: a black scene does no radiosity work") {
+  const Scene scene = box_scene(1, 1, 1);
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  ReflectionOptions o;
+  o.ground_reflectance = 0;
+  const ReflectionResult r = reflected_components(scene, std::vector<double>(6, 0.0), engine, {}, o);
+  CHECK(r.black);
+  CHECK(r.elements == 0);
+}
+
+namespace {
+
+// A 2 × 2 × 2 m box room (floor 0.2, walls 0.5, ceiling 0.7) with an open 1 × 1 m window in its
+// south wall (y = 0, x 0.5..1.5, z 0.6..1.6) and nothing outside but the far ground (0.2): the
+// exterior is the far ground, so no occluder lies beyond any luminaire.
+struct WindowRoom {
+  Scene scene;
+  std::vector<double> reflectance;
+  SensorGrid grid;
+  WindowRoom() {
+    const double w = 2;
+    scene.occluders = {polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
+                       polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
+                       polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
+                       polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
+                       polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}}, "east"),
+                       polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6},
+                                {1.5, 0, 1.6}, {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
+                               "south")};
+    reflectance = {0.2, 0.7, 0.5, 0.5, 0.5, 0.5};
+    scene.apertures.push_back({polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 1.0});
+    grid.name = "g";
+    for (double y : {0.5, 1.0, 1.5}) grid.sensors.push_back({{1.0, y, 0.85}, {0, 0, 1}});
+    grid.sensors.push_back({{1.0, 1.2, 1.0}, {0, -1, 0}});  // facing the window: sees the far ground
+  }
+};
+
+ReflectionResult solve_room(const WindowRoom& room, double element_size, int refinements = 0) {
+  const VisibilityEngine engine(room.scene, GeometryMode::exact);
+  ReflectionOptions o;
+  o.element_size = element_size;
+  o.max_refinements = refinements;
+  o.tolerance_percent = 1e-6;
+  return reflected_components(room.scene, room.reflectance, engine, {&room.grid}, o);
+}
+
+}  // namespace
+
+TEST_CASE("window room: IRC converges under refinement and the error estimate covers the actual error") {
+  const WindowRoom room;
+  // Element sizes 3, 1.5 and 0.75 on 2 m faces: 12, 48 and 192 elements (each halving of the
+  // size splits every triangle in four).
+  const ReflectionResult coarse = solve_room(room, 3), mid = solve_room(room, 1.5), fine = solve_room(room, 0.75);
+  REQUIRE(fine.elements >= 8 * coarse.elements);  // the south wall's pieces are not all split alike
+  double worst_coarse = 0, worst_mid = 0;
+  for (std::size_t i = 0; i < room.grid.sensors.size(); ++i) {
+    const double ref = fine.grids[0].irc_percent[i];
+    const double e_coarse = std::abs(coarse.grids[0].irc_percent[i] - ref);
+    const double e_mid = std::abs(mid.grids[0].irc_percent[i] - ref);
+    // The estimate must cover the actual error (against a solution with 16 times the elements;
+    // for the middle mesh the reference has only 4 times its elements, so its own error, about a
+    // quarter of the middle one's at second order, is allowed for).
+    CHECK(coarse.grids[0].error_percent[i] >= e_coarse);
+    CHECK(mid.grids[0].error_percent[i] >= 0.75 * e_mid);
+    worst_coarse = std::max(worst_coarse, e_coarse);
+    worst_mid = std::max(worst_mid, e_mid);
+    CHECK(fine.grids[0].irc_percent[i] > 0);
+  }
+  // Halving the elements' size: linear elements promise h² where the exitance is smooth; the
+  // corners and the window's edges (derivative singularities of E₀) may cost part of that, and
+  // the reference's own error (a quarter of the middle mesh's) biases the measured order up.
+  // Required: order 1.5 (ratio 2^-1.5 = 0.35); measured 2.6 (printed).
+  INFO("worst IRC error: size 3 " << worst_coarse << ", size 1.5 " << worst_mid << " DF points");
+  CHECK(worst_mid < 0.35 * worst_coarse);
+  WARN("window room: observed order " << std::log2(worst_coarse / worst_mid));
+  // The sensor facing the window sees the far ground through it: ERC > 0; the upward ones do not.
+  CHECK(fine.grids[0].erc_percent[3] > 0);
+  CHECK(fine.grids[0].erc_percent[0] == 0);
+}
+
+TEST_CASE("window room: energy balance, first-bounce flux = absorbed + escaping, improving under refinement") {
+  const WindowRoom room;
+  const ReflectionResult coarse = solve_room(room, 3), fine = solve_room(room, 0.75);
+  CHECK(coarse.flux_first_bounce > 0);
+  CHECK(std::abs(fine.balance_mismatch) < 1e-3);
+  CHECK(std::abs(fine.balance_mismatch) <= std::abs(coarse.balance_mismatch));
+  WARN("energy balance mismatch: " << coarse.balance_mismatch << " (size 3), " << fine.balance_mismatch << " (0.75)");
+  // Gauss–Seidel converged to roundoff.
+  CHECK(fine.solver_change <= 1e-15);
+}
+
+TEST_CASE("window room: refinement splits where the estimate is largest and lowers it") {
+  const WindowRoom room;
+  const ReflectionResult r = solve_room(room, 3, 2);
+  REQUIRE(r.error_by_round.size() == 3);
+  CHECK(r.refinements == 2);
+  CHECK(r.max_level >= 2);
+  // Each round splits the largest contributors: the worst sensor's estimate falls.
+  CHECK(r.error_by_round[1] < r.error_by_round[0]);
+  CHECK(r.error_by_round[2] < r.error_by_round[1]);
+  CHECK(r.max_error_percent == r.error_by_round.back());
+  WARN("refinement: worst estimate by round " << r.error_by_round[0] << ", " << r.error_by_round[1] << ", "
+                                              << r.error_by_round[2] << " DF points; " << r.elements << " elements");
+}
