@@ -247,15 +247,17 @@ class ShadowClipper {
     for (const auto& x : w) cone_lines_.push_back(x.out);
 
     blockers_ = &blockers;
-    std::vector<Shadow> shadows;
-    for (std::size_t b = 0; b < blockers.size(); ++b)
-      if (auto shadow = shadow_of(*blockers[b], int(b), w)) shadows.push_back(std::move(*shadow));
-
+    // Each shadow is built only when it is subtracted, so that nothing is built once the piece is
+    // all hidden. The shadows and their order are those of building them all first, so the result
+    // is the same; only an uncertain sign in a shadow that is never built no longer sends an
+    // empty region to the rationals (whose answer is the same empty region).
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
     for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
-    for (const auto& shadow : shadows) {
+    for (std::size_t b = 0; b < blockers.size(); ++b) {
+      const std::optional<Shadow> shadow = shadow_of(*blockers[b], int(b), w);
+      if (!shadow) continue;
       std::vector<std::vector<Vertex2<FT>>> next;
-      for (const auto& P : pieces) subtract(P, shadow, next);
+      for (const auto& P : pieces) subtract(P, *shadow, next);
       pieces = std::move(next);
       if (pieces.empty()) return;
     }

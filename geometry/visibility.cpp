@@ -172,6 +172,26 @@ struct BvhNode {
   int first = 0, count = 0;   // leaf: range in the ordered piece indices
 };
 
+// Squared distance from p to the box (0 inside): the key of the nearest-first traversal.
+double distance2(const Box& box, const Vec3& p) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = std::max({box.lo[k] - p[k], 0.0, p[k] - box.hi[k]});
+    d += e * e;
+  }
+  return d;
+}
+
+// An occluder polygon as the union of its convex pieces, for the whole-piece cover test
+// (VisibilityEngine::Impl::covers). `testable`: all its pieces lie exactly in the plane of the
+// first (so that central projection from a receiver off that plane is one-to-one on it) and its
+// boundary is short enough for the test to cost less than the clipping it may save.
+struct OccluderPatch {
+  std::vector<int> pieces;                       // indices in Impl::occluders
+  std::vector<std::pair<Vec3, Vec3>> boundary;   // edges of its pieces that no other of its pieces has
+  bool testable = false;
+};
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -182,8 +202,133 @@ struct VisibilityEngine::Impl {
   std::vector<Box> occluder_boxes;
   std::vector<int> order;  // piece indices in BVH leaf order
   std::vector<BvhNode> nodes;
+  std::vector<int> rank;   // rank[slot]: where the piece order[slot] comes in the traversal that
+                           // fixes the order of subtraction (right child first, as built)
+  std::vector<OccluderPatch> patches;  // by occluder polygon (ConvexPiece::source)
   std::vector<std::vector<ConvexPiece>> apertures;
   std::size_t aperture_pieces = 0;
+
+  // The rank of every slot in the depth-first order that visits the right child first: the order
+  // in which collect() once visited the survivors, and in which their shadows are still
+  // subtracted (the partition into loops, and so every kernel sum, depends on it).
+  void rank_slots() {
+    rank.assign(order.size(), 0);
+    int next = 0;
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const BvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node.left >= 0) {
+        stack.push_back(node.left);
+        stack.push_back(node.right);
+        continue;
+      }
+      for (int i = node.first; i < node.first + node.count; ++i) rank[i] = next++;
+    }
+  }
+
+  // Groups the pieces by polygon and finds each polygon's boundary: an edge (unordered pair of
+  // input vertices) that only one of its pieces has. The pieces of a triangulation share their
+  // inner edges vertex for vertex; an inner edge taken for a boundary edge only makes the test
+  // stricter.
+  void build_patches(std::size_t polygons) {
+    constexpr std::size_t kMaxBoundary = 64;
+    patches.assign(polygons, {});
+    for (std::size_t i = 0; i < occluders.size(); ++i) patches[occluders[i].source].pieces.push_back(int(i));
+    const auto less = [](const Vec3& a, const Vec3& b) {
+      return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
+    };
+    for (OccluderPatch& patch : patches) {
+      if (patch.pieces.empty()) continue;
+      const ConvexPiece& first = occluders[patch.pieces[0]];
+      const auto& fv = first.vertices;
+      bool planar = true;
+      std::vector<std::pair<Vec3, Vec3>> edges;
+      for (const int i : patch.pieces) {
+        const auto& v = occluders[i].vertices;
+        for (std::size_t e = 0; e < v.size(); ++e) {
+          planar &= ExactSigns::orient3(fv[0], fv[first.base_b], fv[first.base_c], v[e]) == 0;
+          Vec3 a = v[e], b = v[(e + 1) % v.size()];
+          if (less(b, a)) std::swap(a, b);
+          edges.emplace_back(a, b);
+        }
+      }
+      if (!planar) continue;
+      const auto pair_less = [&](const std::pair<Vec3, Vec3>& x, const std::pair<Vec3, Vec3>& y) {
+        return less(x.first, y.first) || (x.first == y.first && less(x.second, y.second));
+      };
+      std::sort(edges.begin(), edges.end(), pair_less);
+      for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        if (j - i == 1) patch.boundary.push_back(edges[i]);
+        i = j;
+      }
+      patch.testable = patch.boundary.size() <= kMaxBoundary;
+    }
+  }
+
+  // Whether polygon `patch` hides all of aperture piece w from p, by exact predicates on the input;
+  // false when it does not or when the test cannot tell. With Π the polygon's plane and p off it:
+  // if every vertex of w lies strictly beyond Π seen from p (with the occluders beyond: the rays
+  // p→w reach Π at t > 0; without: the segments (p, w) cross it), the rays through w meet Π in a
+  // convex polygon Q, and central projection maps the polygon's pieces one-to-one onto Π's
+  // points. Q lies in the union of the pieces iff no boundary edge of the polygon meets the
+  // interior of Q and one interior point of Q lies in a piece (the interior of Q is connected).
+  // An edge (a, b) of Π misses the interior of Q iff a line separates them (2-D separating axes:
+  // the lines of Q's edges, planes through p and w's edges, or the edge's own line, the plane
+  // through p, a, b). The interior point is the ray through g = (w0 + w_b + w_c)/3, inside the
+  // base triangle of w. Then the exact subtraction leaves nothing of the piece whatever the other
+  // blockers and their order: the region is empty, the result of today's computation exactly
+  // (every sign there is the exact sign; a partition of an empty set has no loops).
+  template <class Signs>
+  bool covers(const OccluderPatch& patch, const Vec3& p, const ConvexPiece& w, int sh, bool beyond) const {
+    const ConvexPiece& first = occluders[patch.pieces[0]];
+    const auto& fv = first.vertices;
+    const Vec3 &o0 = fv[0], &ob = fv[first.base_b], &oc = fv[first.base_c];
+    const int sp = Signs::orient3(o0, ob, oc, p);
+    if (sp == 0) return false;
+    const auto& wv = w.vertices;
+    for (const Vec3& v : wv)
+      if (Signs::normal_dot_diff(o0, ob, oc, v, beyond ? p : o0) != -sp) return false;
+    const int inside = -sh;
+    for (const auto& [a, b] : patch.boundary) {
+      int lo = 1, hi = -1;
+      for (const Vec3& v : wv) {
+        const int s = Signs::orient3(p, a, b, v);
+        lo = std::min(lo, s), hi = std::max(hi, s);
+      }
+      if (lo >= 0 || hi <= 0) continue;  // w on one side of the edge's line
+      bool separated = false;
+      for (std::size_t e = 0; e < wv.size() && !separated; ++e) {
+        const Vec3 &c = wv[e], &d = wv[(e + 1) % wv.size()];
+        separated = inside * Signs::orient3(p, c, d, a) <= 0 && inside * Signs::orient3(p, c, d, b) <= 0;
+      }
+      if (!separated) return false;
+    }
+    const Vec3 &w0 = wv[0], &wb = wv[w.base_b], &wc = wv[w.base_c];
+    // sign det[a − p, b − p, g − p], times 3: exact on the input.
+    const auto orient_g = [&](const Vec3& a, const Vec3& b) {
+      return predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        const T ax = T(a.x) - T(p.x), ay = T(a.y) - T(p.y), az = T(a.z) - T(p.z);
+        const T bx = T(b.x) - T(p.x), by = T(b.y) - T(p.y), bz = T(b.z) - T(p.z);
+        const T gx = T(w0.x) + T(wb.x) + T(wc.x) - (T(p.x) + T(p.x) + T(p.x));
+        const T gy = T(w0.y) + T(wb.y) + T(wc.y) - (T(p.y) + T(p.y) + T(p.y));
+        const T gz = T(w0.z) + T(wb.z) + T(wc.z) - (T(p.z) + T(p.z) + T(p.z));
+        return gx * (ay * bz - az * by) + gy * (az * bx - ax * bz) + gz * (ax * by - ay * bx);
+      });
+    };
+    for (const int i : patch.pieces) {
+      const auto& v = occluders[i].vertices;
+      // The pieces share the plane and the orientation (one drop axis per polygon): inside the
+      // cone over a piece, −sp · orient3(p, a, b, x) ≥ 0 on each edge (a, b).
+      bool in = true;
+      for (std::size_t e = 0; e < v.size() && in; ++e) in = -sp * orient_g(v[e], v[(e + 1) % v.size()]) >= 0;
+      if (in) return true;
+    }
+    return false;
+  }
 
   int build(int first, int count) {
     BvhNode node;
@@ -243,10 +388,18 @@ struct VisibilityEngine::Impl {
     return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, from) >= 0; });
   }
 
+  // The occluder pieces that may hide part of w from p, in the order of subtraction (rank). The
+  // hierarchy is walked nearest box first, so that what is near the receiver (its own room's walls)
+  // comes first; in the exact modes each of the first kCoverTries polygons met is tested for
+  // hiding all of w (covers), and the walk stops when one does: returns true, and `out` is then
+  // to be ignored. The float path never stops (its subtraction rounds, and may leave slivers that
+  // it must report as the same code always has).
   template <class Signs>
-  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
+  bool collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
                std::vector<const ConvexPiece*>& out, VisibilityCounters& counters) const {
-    if (nodes.empty()) return;
+    if (nodes.empty()) return false;
+    constexpr int kCoverTries = 6;
+    const bool try_cover = mode != GeometryMode::floating;
     const bool horizon = options.clip_to_horizon, beyond = options.occluders_beyond;
     // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
     std::vector<CullPlane> planes;
@@ -265,6 +418,9 @@ struct VisibilityEngine::Impl {
       const Vec3 a = wv[e] - p, b = wv[(e + 1) % wv.size()] - p;
       planes.push_back({double(-sh) * cross(a, b), norm(a) * norm(b)});
     }
+    std::vector<std::pair<int, const ConvexPiece*>> found;
+    std::size_t tried[kCoverTries];
+    int tries = 0;
     int stack[128];
     int top = 0;
     stack[top++] = 0;
@@ -276,8 +432,9 @@ struct VisibilityEngine::Impl {
         continue;
       }
       if (node.left >= 0) {
-        stack[top++] = node.left;
-        stack[top++] = node.right;
+        const bool left_first = distance2(nodes[node.left].box, p) <= distance2(nodes[node.right].box, p);
+        stack[top++] = left_first ? node.right : node.left;
+        stack[top++] = left_first ? node.left : node.right;
         continue;
       }
       for (int i = node.first; i < node.first + node.count; ++i) {
@@ -288,9 +445,17 @@ struct VisibilityEngine::Impl {
           continue;
         }
         ++counters.occluders_tested;
-        if (survives<Signs>(o, p, n, w, sh, horizon, beyond)) out.push_back(&o);
+        if (!survives<Signs>(o, p, n, w, sh, horizon, beyond)) continue;
+        found.emplace_back(rank[i], &o);
+        if (!try_cover || tries == kCoverTries || std::find(tried, tried + tries, o.source) != tried + tries) continue;
+        tried[tries++] = o.source;
+        const OccluderPatch& patch = patches[o.source];
+        if (patch.testable && covers<Signs>(patch, p, w, sh, beyond)) return true;
       }
     }
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& f : found) out.push_back(f.second);
+    return false;
   }
 
   template <class Signs, class FT>
@@ -312,7 +477,10 @@ struct VisibilityEngine::Impl {
       return;
     }
     std::vector<const ConvexPiece*> blockers;
-    collect<Signs>(p, n, w, sh, options, blockers, counters);
+    if (collect<Signs>(p, n, w, sh, options, blockers, counters)) {
+      ++counters.pairs_covered;
+      return;
+    }
     const bool reference = mode == GeometryMode::rational;
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
@@ -358,7 +526,11 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode) : impl
   }
   impl_->order.resize(impl_->occluders.size());
   std::iota(impl_->order.begin(), impl_->order.end(), 0);
-  if (!impl_->occluders.empty()) impl_->build(0, int(impl_->occluders.size()));
+  if (!impl_->occluders.empty()) {
+    impl_->build(0, int(impl_->occluders.size()));
+    impl_->rank_slots();
+  }
+  impl_->build_patches(scene.occluders.size());
   for (std::size_t a = 0; a < scene.apertures.size(); ++a) {
     impl_->apertures.push_back(convex_pieces(scene.apertures[a].polygon, a));
     impl_->aperture_pieces += impl_->apertures.back().size();

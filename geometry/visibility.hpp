@@ -23,6 +23,8 @@ struct VisibilityCounters {
   std::uint64_t pairs = 0;               // sensor–aperture-piece pairs evaluated
   std::uint64_t pairs_not_facing = 0;    // piece behind the receiver, below its horizon, or edge-on
   std::uint64_t pairs_unobstructed = 0;  // no occluder survived culling: no exact construction at all
+  std::uint64_t pairs_covered = 0;       // one occluder polygon hides the whole piece: decided by
+                                         // exact predicates, nothing clipped (an empty region)
   std::uint64_t pairs_clipped = 0;       // occluders clipped and subtracted
   std::uint64_t pairs_rational = 0;      // of those, pairs where interval arithmetic could not certify
                                          // every decision, so exact rationals were used
@@ -34,6 +36,7 @@ struct VisibilityCounters {
     pairs += o.pairs;
     pairs_not_facing += o.pairs_not_facing;
     pairs_unobstructed += o.pairs_unobstructed;
+    pairs_covered += o.pairs_covered;
     pairs_clipped += o.pairs_clipped;
     pairs_rational += o.pairs_rational;
     occluders_box_culled += o.occluders_box_culled;
