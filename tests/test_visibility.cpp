@@ -323,3 +323,61 @@ TEST_CASE("a surface that is both luminaire and occluder hides itself unless exc
   options.excluded_occluder = 1;
   CHECK(engine.visible_region({0, 0, 0}, {0, 0, 1}, 0, counters, options).empty());
 }
+
+namespace {
+
+// A wall in the plane y = y0, x ∈ [−3, 5], z ∈ [0, 3], with the hole x ∈ [hx0, hx1], z ∈ [hz0, hz1]
+// cut by a seam: triangulated into several pieces, so that only their union hides anything whole.
+Polygon wall_at(double y0, double hx0, double hx1, double hz0, double hz1) {
+  return polygon({{-3, y0, 0}, {5, y0, 0}, {5, y0, 3}, {-3, y0, 3}, {-3, y0, hz0}, {hx0, y0, hz0}, {hx0, y0, hz1}, {hx1, y0, hz1},
+                  {hx1, y0, hz0}, {hx0, y0, hz0}, {-3, y0, hz0}},
+                 "wall");
+}
+
+}  // namespace
+
+TEST_CASE("a polygon that hides the whole aperture is found before any clipping; one with a hole in the view is clipped") {
+  // Sensor p = (1, 3, 0.85) looking at the window (y = 0) through a wall at y = 1: the window's
+  // cone meets the wall in x ∈ [1/3, 5/3], z ∈ [0.95, 1.62]. Its other rooms' windows are this
+  // case (DESIGN.md §2).
+  const Vec3 p{1, 3, 0.85};
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+    Scene hidden;
+    hidden.apertures.push_back({polygon(kWindow, "window"), 1.0});
+    hidden.occluders.push_back(polygon({{0, 0.5, 0}, {2, 0.5, 0}, {2, -0.5, 0}, {0, -0.5, 0}}, "mat"));  // in the cone, below the horizon
+    hidden.occluders.push_back(wall_at(1, 3, 4, 1, 2));  // the hole out of the view
+    const VisibilityEngine engine(hidden, mode);
+    VisibilityCounters counters;
+    CHECK(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+    CHECK(counters.pairs_covered == 1);
+    CHECK(counters.pairs_clipped == 0);
+    CHECK(counters.occluders_clipped == 0);
+    // Beyond the window the wall hides the sky but not a luminaire in the window's plane.
+    Scene behind = hidden;
+    behind.occluders[1] = wall_at(-1, 3, 4, 1, 2);
+    const VisibilityEngine behind_engine(behind, mode);
+    VisibilityCounters c2;
+    CHECK(behind_engine.visible_region(p, {0, 0, 1}, 0, c2).empty());
+    CHECK(c2.pairs_covered == 1);
+    VisibilityOptions luminaire;
+    luminaire.clip_to_horizon = false;
+    luminaire.occluders_beyond = false;
+    VisibilityCounters c3;
+    const double omega = solid_angle(behind_engine.visible_region(p, {0, 0, 1}, 0, c3, luminaire));
+    CHECK(c3.pairs_covered == 0);
+    // The whole window: solid angle of the rectangle, by the test's own quadrature.
+    const double omega_window = double(test::integrate_directions(test::lvec(p), {0, 0, 1}, {2, 0, 0}, {0, 0, 1}, [](const LVec3&) { return 1.0L; }));
+    CHECK(relative_error(omega, omega_window) < 1e-10);
+  }
+  // The hole in the view: nothing hides the whole window, the pair is clipped and what is seen is
+  // the hole's projection onto the window, x ∈ [0.25, 1.75], z ∈ [1.075, 1.825].
+  Scene open;
+  open.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  open.occluders.push_back(wall_at(1, 0.5, 1.5, 1, 1.5));
+  VisibilityCounters counters;
+  const VisibilityEngine engine(open, GeometryMode::exact);
+  CHECK_FALSE(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+  CHECK(counters.pairs_covered == 0);
+  CHECK(counters.pairs_clipped == 1);
+  CHECK(relative_error(sc(open, p, GeometryMode::exact), reference_sc(p, 0.25, 1.75, 1.075, 1.825)) < 1e-10);
+}
