@@ -235,22 +235,49 @@ class ShadowClipper {
   // Appends the visible part of the piece, as positively oriented loops, to `region`, and with
   // `sources` the source of each of their edges to region.edge_sources.
   void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region, bool sources = false) {
-    const auto& wv = piece_.vertices;
     std::vector<Vertex3<FT>> w;
+    if (!prepare(w)) return;
+    for (const auto& P : visible_pieces(blockers, w)) {
+      region.loops.push_back(directions(P));
+      if (sources) region.edge_sources.push_back(edge_sources(P));
+    }
+  }
+
+  // Whether the blockers leave nothing of the piece, without building any direction. Exact on the
+  // exact path (every sign is the exact sign): then any superset of the blockers, in any order,
+  // leaves nothing either.
+  bool hides_all(const std::vector<const ConvexPiece*>& blockers) {
+    std::vector<Vertex3<FT>> w;
+    return !prepare(w) || visible_pieces(blockers, w).empty();
+  }
+
+ private:
+  using V3 = Vertex3<FT>;
+  using V2 = Vertex2<FT>;
+
+  // The piece relative to p, clipped to the receiver's hemisphere and horizon; false if nothing
+  // is left.
+  bool prepare(std::vector<Vertex3<FT>>& w) {
+    const auto& wv = piece_.vertices;
     for (std::size_t e = 0; e < wv.size(); ++e) {
       const Vec r = relative(wv[e]);
       w.push_back({{r[0], r[1], r[2]}, &wv[e], LineId::segment(wv[e], wv[(e + 1) % wv.size()])});
     }
     w0_ = w[0];
     N_ = cross(sub(w[piece_.base_b], w0_), sub(w[piece_.base_c], w0_));
-    if (!clip_to_receiver(w)) return;
+    if (!clip_to_receiver(w)) return false;
     for (const auto& x : w) cone_lines_.push_back(x.out);
+    return true;
+  }
 
+  // The clipped piece minus the blockers' shadows, subtracted in the order given, as convex pieces
+  // in the aperture's plane. Each shadow is built only when it is subtracted, so that nothing is
+  // built once the piece is all hidden. The shadows and their order are those of building them
+  // all first, so the result is the same; only an uncertain sign in a shadow that is never built
+  // no longer sends an empty region to the rationals (whose answer is the same empty region).
+  std::vector<std::vector<Vertex2<FT>>> visible_pieces(const std::vector<const ConvexPiece*>& blockers,
+                                                       const std::vector<Vertex3<FT>>& w) {
     blockers_ = &blockers;
-    // Each shadow is built only when it is subtracted, so that nothing is built once the piece is
-    // all hidden. The shadows and their order are those of building them all first, so the result
-    // is the same; only an uncertain sign in a shadow that is never built no longer sends an
-    // empty region to the rationals (whose answer is the same empty region).
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
     for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
     for (std::size_t b = 0; b < blockers.size(); ++b) {
@@ -259,17 +286,10 @@ class ShadowClipper {
       std::vector<std::vector<Vertex2<FT>>> next;
       for (const auto& P : pieces) subtract(P, *shadow, next);
       pieces = std::move(next);
-      if (pieces.empty()) return;
+      if (pieces.empty()) break;
     }
-    for (const auto& P : pieces) {
-      region.loops.push_back(directions(P));
-      if (sources) region.edge_sources.push_back(edge_sources(P));
-    }
+    return pieces;
   }
-
- private:
-  using V3 = Vertex3<FT>;
-  using V2 = Vertex2<FT>;
   // A shadow, counter-clockwise; `reversed` when its edges run against the direction of the
   // occluder edges they lie on (the projection reversed the occluder's orientation).
   struct Shadow {
