@@ -65,10 +65,11 @@ struct ScenesSettings {
   std::size_t scaling_stride;  // the office grid's sensors used for the geometry scalings
   int scaling_runs;            // best of, as long as the runs so far took less than 2 s
   std::vector<int> floor_rooms;  // the generated office floor: rooms per row (77 polygons a room)
+  std::vector<int> order_boxes;  // boxes in the street for the one-core table of subtraction orders
 };
 
 ScenesSettings settings_for(bool quick) {
-  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1, {1, 2}};
+  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1, {1, 2}, {0, 16}};
   return {200,
           1,
           2,
@@ -80,7 +81,8 @@ ScenesSettings settings_for(bool quick) {
           {4, 8, 16, 32, 64, 128},
           8,
           3,
-          {1, 4, 16, 65}};
+          {1, 4, 16, 65},
+          {0, 4, 16, 64, 128, 512, 2000}};
 }
 
 struct Sample {
@@ -566,6 +568,68 @@ void write_floor_table(const std::string& path, const std::vector<FloorRow>& row
   if (!f) throw Error(path + ": cannot write");
 }
 
+// ── One core: occluders, in the order as built and front to back ───────────────────────────
+
+struct OrderRow {
+  int boxes;
+  std::size_t polygons;
+  std::string order;  // as_built, front_to_back
+  std::size_t sensors;
+  double cpu_seconds;
+  VisibilityCounters counters;
+  double max_relative_difference;  // of SC against as_built at the same sensors (0 for as_built)
+};
+
+// The office with k boxes in the street (as in the scaling), one core, serial, on every
+// `stride`-th sensor of the grid (every 4th times more for the largest counts, whose as-built
+// cost is what the issue is about), in both subtraction orders.
+std::vector<OrderRow> measure_orders(const Sample& office, const std::vector<int>& boxes, std::size_t stride, bench::StatusLine& status) {
+  std::vector<OrderRow> rows;
+  for (const int k : boxes) {
+    const Scene scene = office_with_boxes(office.scene, k);
+    const SensorGrid grid = every_kth(office.grid, k > 256 ? 4 * stride : stride);
+    std::vector<double> as_built;
+    for (const SubtractionOrder order : {SubtractionOrder::as_built, SubtractionOrder::front_to_back}) {
+      const bool front = order == SubtractionOrder::front_to_back;
+      status.show(fmt::format("bench scenes: one core, {} boxes, {}, {} sensors", k, front ? "front to back" : "as built", grid.sensors.size()));
+      const VisibilityEngine engine(scene, GeometryMode::exact, order);
+      const SerialRun r = run_serial(engine, scene, grid);
+      double worst = 0;
+      if (!front) as_built = r.sc;
+      else
+        for (std::size_t i = 0; i < r.sc.size(); ++i)
+          if (as_built[i] != r.sc[i]) worst = std::max(worst, std::abs(r.sc[i] - as_built[i]) / std::abs(as_built[i]));
+      rows.push_back({k, scene.occluders.size(), front ? "front_to_back" : "as_built", grid.sensors.size(), r.cpu_seconds, r.counters, worst});
+    }
+  }
+  return rows;
+}
+
+// Least-squares slope of log(CPU time per sensor) against log(occluder polygons), per order.
+double order_exponent(const std::vector<OrderRow>& rows, const std::string& order) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double n = 0;
+  for (const OrderRow& r : rows)
+    if (r.order == order) {
+      const double x = std::log(double(r.polygons)), y = std::log(r.cpu_seconds / double(r.sensors));
+      sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+    }
+  return n >= 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
+}
+
+void write_order_table(const std::string& path, const std::vector<OrderRow>& rows) {
+  std::ofstream f(path);
+  f << "boxes,occluder_polygons,order,sensors,cpu_s,cpu_per_sensor_s,occluder_pieces_clipped_per_pair,shadows_skipped_per_pair,"
+       "pairs_covered,max_relative_difference_to_as_built\n";
+  for (const OrderRow& r : rows) {
+    const double pairs = double(std::max<std::uint64_t>(r.counters.pairs, 1));
+    f << fmt::format("{},{},{},{},{:.4e},{:.4e},{:.3f},{:.3f},{},{:.3e}\n", r.boxes, r.polygons, r.order, r.sensors, r.cpu_seconds,
+                     r.cpu_seconds / double(r.sensors), double(r.counters.occluders_clipped) / pairs,
+                     double(r.counters.occluders_skipped) / pairs, r.counters.pairs_covered, r.max_relative_difference);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
 std::vector<ScalingRow> measure_scaling(const Sample& office, const ScenesSettings& settings, bench::StatusLine& status,
                                         PairsRow& large_grid_pairs) {
   std::vector<ScalingRow> rows;
@@ -817,6 +881,20 @@ void print_summary(std::ostream& out, const std::vector<ErrorRow>& rows, const s
   out << "\nThe machine may be shared: CPU times are what the work costs, wall times what it took here.\n";
 }
 
+void print_order_summary(std::ostream& out, const std::vector<OrderRow>& rows) {
+  out << "\n## Occluders, one core: the subtraction order as built (the default) and front to back\n\n";
+  out << "| boxes | occluder polygons | order | sensors | CPU per sensor | pieces clipped per pair | shadows skipped per pair | max rel. "
+         "difference to as built |\n|---|---|---|---|---|---|---|---|\n";
+  for (const OrderRow& r : rows) {
+    const double pairs = double(std::max<std::uint64_t>(r.counters.pairs, 1));
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {:.1f} | {:.2e} |\n", r.boxes, r.polygons, r.order, r.sensors,
+                       seconds_text(r.cpu_seconds / double(r.sensors)), double(r.counters.occluders_clipped) / pairs,
+                       double(r.counters.occluders_skipped) / pairs, r.max_relative_difference);
+  }
+  out << fmt::format("\nexponent in the number of occluder polygons (CPU time per sensor): as built {:.2f}, front to back {:.2f}\n",
+                     order_exponent(rows, "as_built"), order_exponent(rows, "front_to_back"));
+}
+
 void print_floor_summary(std::ostream& out, const std::vector<FloorRow>& rows) {
   out << "\n## The generated office floor (one core; every window from sensors in a few rooms)\n\n";
   out << "| rooms | glazing | occluder polygons | apertures | pairs | CPU per pair | covered | clipped | pieces clipped per pair |\n";
@@ -845,6 +923,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   std::vector<PairsRow> pairs;
   std::vector<ScalingRow> scaling;
   std::vector<FloorRow> floor_rows;
+  std::vector<OrderRow> order_rows;
   Floor floor;
   {
     bench::StatusLine status(!opt.quiet && stderr_is_terminal());
@@ -857,6 +936,7 @@ int run_bench_scenes(const BenchOptions& opt) {
     scaling = measure_scaling(samples.front(), settings, status, large);
     pairs.push_back(large);
     floor_rows = measure_floor(samples.front(), settings.floor_rooms, settings.timing_runs, status, floor);
+    order_rows = measure_orders(samples.front(), settings.order_boxes, settings.scaling_stride, status);
     status.clear();
   }
   const std::vector<Fit> fits = fit_exponents(scaling);
@@ -870,6 +950,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_fit_table(outputs.stage(file("scenes_scaling_fit.csv")), fits);
   write_pairs_table(outputs.stage(file("scenes_pairs.csv")), pairs);
   write_floor_table(outputs.stage(file("scenes_floor.csv")), floor_rows);
+  write_order_table(outputs.stage(file("scenes_occluders_one_core.csv")), order_rows);
   write_floor(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
               outputs.stage(file("scenes_floor_grid.pts")));
   write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
@@ -877,6 +958,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   outputs.commit();
   print_summary(std::cout, rows, results, scaling, fits, pairs, settings);  // the results: stdout even with --quiet
   print_floor_summary(std::cout, floor_rows);
+  print_order_summary(std::cout, order_rows);
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
                              "scenes_pairs.csv, scenes_floor.csv and the largest floor (scenes_floor_scene.rad, "

@@ -198,6 +198,7 @@ struct OccluderPatch {
 
 struct VisibilityEngine::Impl {
   GeometryMode mode;
+  SubtractionOrder order_of_subtraction = SubtractionOrder::as_built;
   std::vector<ConvexPiece> occluders;
   std::vector<Box> occluder_boxes;
   std::vector<int> order;  // piece indices in BVH leaf order
@@ -507,41 +508,54 @@ struct VisibilityEngine::Impl {
       return;
     }
     const bool reference = mode == GeometryMode::rational;
+    const bool front_to_back = order_of_subtraction == SubtractionOrder::front_to_back;
+    if (front_to_back) {
+      std::vector<std::pair<double, const ConvexPiece*>> by_distance;
+      for (const ConvexPiece* o : blockers) by_distance.emplace_back(distance2(occluder_boxes[std::size_t(o - occluders.data())], p), o);
+      std::stable_sort(by_distance.begin(), by_distance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t i = 0; i < blockers.size(); ++i) blockers[i] = by_distance[i].second;
+    }
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
     const bool shortcut = blockers.empty() && !reference && unobstructed_directions<Signs>(p, n, w, sh, options, region);
     if (shortcut) {
       ++counters.pairs_unobstructed;
+      return;
+    }
+    blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
+    counters.occluders_clipped += blockers.size();
+    const auto clip = [&](auto number, SphericalRegion& out) {
+      clipping::ShadowClipper<decltype(number), Signs> clipper(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond, front_to_back);
+      clipper.run(blockers, out, options.edge_sources);
+      counters.occluders_skipped += clipper.skipped();
+    };
+    if constexpr (std::is_same_v<FT, double>) {
+      clip(0.0, region);
     } else {
-      blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
-      counters.occluders_clipped += blockers.size();
-      if constexpr (std::is_same_v<FT, double>) {
-        clipping::ShadowClipper<double, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
+      SphericalRegion certified;
+      bool certain = !reference;
+      if (certain) {
+        try {
+          CGAL::Protect_FPU_rounding<true> upward;
+          clip(Interval(0), certified);
+        } catch (const CGAL::Uncertain_conversion_exception&) {
+          certain = false;
+        }
+      }
+      if (certain) {
+        for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
+        for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
       } else {
-        SphericalRegion certified;
-        bool certain = !reference;
-        if (certain) {
-          try {
-            CGAL::Protect_FPU_rounding<true> upward;
-            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, certified, options.edge_sources);
-          } catch (const CGAL::Uncertain_conversion_exception&) {
-            certain = false;
-          }
-        }
-        if (certain) {
-          for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
-          for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
-        } else {
-          ++counters.pairs_rational;
-          clipping::ShadowClipper<FT, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
-        }
+        ++counters.pairs_rational;
+        clip(FT(0), region);
       }
     }
   }
 };
 
-VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode) : impl_(std::make_unique<Impl>()) {
+VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order) : impl_(std::make_unique<Impl>()) {
   impl_->mode = mode;
+  impl_->order_of_subtraction = order;
   for (std::size_t s = 0; s < scene.occluders.size(); ++s)
     for (auto& piece : convex_pieces(scene.occluders[s], s)) impl_->occluders.push_back(std::move(piece));
   for (const ConvexPiece& o : impl_->occluders) {
