@@ -21,8 +21,20 @@
 // the office grid. Timed by CPU time over all threads (and wall time); the exponent is the
 // least-squares slope of log CPU time against log count.
 //
+// Office floor (one core): a generated floor of cellular offices (77 polygons and one glazed
+// window a room, up to 10,010 polygons and 130 windows), every window from sensors in a few rooms,
+// glazed and unglazed: CPU time per sensor–aperture pair, and how many pairs were decided without
+// clipping because walls hide the window (the largest floor is written out as .rad/.pts so that
+// another build, today's main for one, can be timed on it with `daylit df --threads 1`).
+// Occluders (one core): the office with k boxes in the street (25 … 10,025 polygons) in both
+// subtraction orders (SubtractionOrder), with the exponent of CPU time per sensor and the largest
+// relative difference of front_to_back from the default. Threads: random office sensors on 1 and
+// 2 threads, and the speed-up.
+//
 // Files: scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv,
-// scenes_pairs.csv (what the visibility routine left out, per grid).
+// scenes_pairs.csv (what the visibility routine left out, per grid), scenes_floor.csv,
+// scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts, scenes_occluders_one_core.csv,
+// scenes_threads.csv.
 
 #include <tbb/task_arena.h>
 
@@ -66,10 +78,11 @@ struct ScenesSettings {
   int scaling_runs;            // best of, as long as the runs so far took less than 2 s
   std::vector<int> floor_rooms;  // the generated office floor: rooms per row (77 polygons a room)
   std::vector<int> order_boxes;  // boxes in the street for the one-core table of subtraction orders
+  std::vector<std::size_t> thread_sensors;  // random office sensors timed on 1 and 2 threads
 };
 
 ScenesSettings settings_for(bool quick) {
-  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1, {1, 2}, {0, 16}};
+  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1, {1, 2}, {0, 16}, {1000}};
   return {200,
           1,
           2,
@@ -82,7 +95,8 @@ ScenesSettings settings_for(bool quick) {
           8,
           3,
           {1, 4, 16, 65},
-          {0, 4, 16, 64, 128, 512, 2000}};
+          {0, 4, 16, 64, 128, 512, 2000},
+          {1000, 10000, 100000}};
 }
 
 struct Sample {
@@ -630,6 +644,46 @@ void write_order_table(const std::string& path, const std::vector<OrderRow>& row
   if (!f) throw Error(path + ": cannot write");
 }
 
+// ── Threads: the same work on 1 and 2 threads ─────────────────────────────────────────────
+
+struct ThreadRow {
+  std::size_t sensors;
+  int threads;
+  double seconds, cpu_seconds;
+};
+
+// Random office sensors, exact geometry, in a TBB arena of 1 and of 2 threads (best of `runs`).
+// On a machine whose cores are shared the wall-clock speed-up says more about the load than the
+// code; the CPU time says what the work costs.
+std::vector<ThreadRow> measure_threads(const Sample& office, const std::vector<std::size_t>& counts, int runs, bench::StatusLine& status) {
+  std::vector<ThreadRow> rows;
+  const VisibilityEngine engine(office.scene, GeometryMode::exact);
+  for (const std::size_t n : counts) {
+    const SensorGrid grid = random_office_grid(n);
+    for (const int threads : {1, 2}) {
+      status.show(fmt::format("bench scenes: {} sensors on {} thread{}", n, threads, threads > 1 ? "s" : ""));
+      tbb::task_arena arena(threads);
+      Timed t{};
+      arena.execute([&] { t = time_parallel(engine, office.scene, grid, runs); });
+      rows.push_back({n, threads, t.seconds, t.cpu_seconds});
+    }
+  }
+  return rows;
+}
+
+void write_thread_table(const std::string& path, const std::vector<ThreadRow>& rows) {
+  std::ofstream f(path);
+  f << "sensors,threads,wall_s,cpu_s,cpu_per_sensor_s,speed_up_wall\n";
+  for (const ThreadRow& r : rows) {
+    double one = 0;
+    for (const ThreadRow& q : rows)
+      if (q.sensors == r.sensors && q.threads == 1) one = q.seconds;
+    f << fmt::format("{},{},{:.4e},{:.4e},{:.4e},{:.3f}\n", r.sensors, r.threads, r.seconds, r.cpu_seconds, r.cpu_seconds / double(r.sensors),
+                     one / r.seconds);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
 std::vector<ScalingRow> measure_scaling(const Sample& office, const ScenesSettings& settings, bench::StatusLine& status,
                                         PairsRow& large_grid_pairs) {
   std::vector<ScalingRow> rows;
@@ -895,6 +949,18 @@ void print_order_summary(std::ostream& out, const std::vector<OrderRow>& rows) {
                      order_exponent(rows, "as_built"), order_exponent(rows, "front_to_back"));
 }
 
+void print_thread_summary(std::ostream& out, const std::vector<ThreadRow>& rows) {
+  out << "\n## Threads (office, random sensors, exact)\n\n| sensors | threads | wall | CPU | CPU per sensor | speed-up (wall) |\n"
+         "|---|---|---|---|---|---|\n";
+  for (const ThreadRow& r : rows) {
+    double one = 0;
+    for (const ThreadRow& q : rows)
+      if (q.sensors == r.sensors && q.threads == 1) one = q.seconds;
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.2f} |\n", r.sensors, r.threads, seconds_text(r.seconds), seconds_text(r.cpu_seconds),
+                       seconds_text(r.cpu_seconds / double(r.sensors)), one / r.seconds);
+  }
+}
+
 void print_floor_summary(std::ostream& out, const std::vector<FloorRow>& rows) {
   out << "\n## The generated office floor (one core; every window from sensors in a few rooms)\n\n";
   out << "| rooms | glazing | occluder polygons | apertures | pairs | CPU per pair | covered | clipped | pieces clipped per pair |\n";
@@ -924,6 +990,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   std::vector<ScalingRow> scaling;
   std::vector<FloorRow> floor_rows;
   std::vector<OrderRow> order_rows;
+  std::vector<ThreadRow> thread_rows;
   Floor floor;
   {
     bench::StatusLine status(!opt.quiet && stderr_is_terminal());
@@ -937,6 +1004,7 @@ int run_bench_scenes(const BenchOptions& opt) {
     pairs.push_back(large);
     floor_rows = measure_floor(samples.front(), settings.floor_rooms, settings.timing_runs, status, floor);
     order_rows = measure_orders(samples.front(), settings.order_boxes, settings.scaling_stride, status);
+    thread_rows = measure_threads(samples.front(), settings.thread_sensors, settings.scaling_runs, status);
     status.clear();
   }
   const std::vector<Fit> fits = fit_exponents(scaling);
@@ -951,6 +1019,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_pairs_table(outputs.stage(file("scenes_pairs.csv")), pairs);
   write_floor_table(outputs.stage(file("scenes_floor.csv")), floor_rows);
   write_order_table(outputs.stage(file("scenes_occluders_one_core.csv")), order_rows);
+  write_thread_table(outputs.stage(file("scenes_threads.csv")), thread_rows);
   write_floor(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
               outputs.stage(file("scenes_floor_grid.pts")));
   write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
@@ -959,10 +1028,12 @@ int run_bench_scenes(const BenchOptions& opt) {
   print_summary(std::cout, rows, results, scaling, fits, pairs, settings);  // the results: stdout even with --quiet
   print_floor_summary(std::cout, floor_rows);
   print_order_summary(std::cout, order_rows);
+  print_thread_summary(std::cout, thread_rows);
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
-                             "scenes_pairs.csv, scenes_floor.csv and the largest floor (scenes_floor_scene.rad, "
-                             "scenes_floor_apertures.rad, scenes_floor_grid.pts) into {} ({:.1f} s)\n",
+                             "scenes_pairs.csv, scenes_floor.csv, the largest floor (scenes_floor_scene.rad, "
+                             "scenes_floor_apertures.rad, scenes_floor_grid.pts), scenes_occluders_one_core.csv and scenes_threads.csv "
+                             "into {} ({:.1f} s)\n",
                              opt.out, seconds_since(t0));
   return 0;
 }

@@ -473,6 +473,23 @@ struct VisibilityEngine::Impl {
   template <class Signs>
   bool nearest_hide_all(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
                         const std::vector<const ConvexPiece*>& nearest) const {
+    // First what costs no construction: the ray through each vertex of w must meet one of them
+    // (in the closed cone over a piece, and reaching its plane as covers() asks). Where one does
+    // not (the own window, whose top corners see sky), the trial is not made. A vertex that the
+    // receiver's planes cut away may decline a trial that would succeed: nothing is lost but time.
+    const auto& wv = w.vertices;
+    const bool beyond = options.occluders_beyond;
+    for (const Vec3& v : wv) {
+      const bool hit = std::any_of(nearest.begin(), nearest.end(), [&](const ConvexPiece* o) {
+        const auto& ov = o->vertices;
+        const int sp = Signs::orient3(ov[0], ov[o->base_b], ov[o->base_c], p);
+        if (sp == 0 || Signs::normal_dot_diff(ov[0], ov[o->base_b], ov[o->base_c], v, beyond ? p : ov[0]) != -sp) return false;
+        for (std::size_t e = 0; e < ov.size(); ++e)
+          if (-sp * Signs::orient3(p, ov[e], ov[(e + 1) % ov.size()], v) < 0) return false;
+        return true;
+      });
+      if (!hit) return false;
+    }
     if (mode == GeometryMode::exact) {
       try {
         CGAL::Protect_FPU_rounding<true> upward;
