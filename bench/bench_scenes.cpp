@@ -33,7 +33,8 @@
 //
 // Files: scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv,
 // scenes_pairs.csv (what the visibility routine left out, per grid), scenes_floor.csv,
-// scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts, scenes_occluders_one_core.csv,
+// scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts (and scenes_boxes_*: the office with
+// the most boxes of the scaling, on its sensors), scenes_occluders_one_core.csv,
 // scenes_threads.csv.
 
 #include <tbb/task_arena.h>
@@ -507,23 +508,23 @@ Floor office_floor(const Scene& office, int rooms_per_row, const std::vector<int
   return f;
 }
 
-// The floor as `daylit df` reads it, so that any build (today's, another branch's) can be timed on
+// A model as `daylit df` reads it, so that any build (today's, another branch's) can be timed on
 // the same model: occluders as `void polygon`, apertures as the office's glass.
-void write_floor(const Floor& f, const std::string& scene_path, const std::string& apertures_path, const std::string& grid_path) {
+void write_model(const Floor& f, const std::string& scene_path, const std::string& apertures_path, const std::string& grid_path) {
   const auto polygon_text = [](const std::string& modifier, const Polygon& p, std::size_t k) {
     std::string t = fmt::format("{} polygon p{}\n0\n0\n{}\n", modifier, k, 3 * p.vertices.size());
     for (const Vec3& v : p.vertices) t += fmt::format("  {:.17g} {:.17g} {:.17g}\n", v.x, v.y, v.z);
     return t;
   };
   std::ofstream scene(scene_path), apertures(apertures_path), grid(grid_path);
-  scene << "# daylit bench scenes: the generated office floor (" << f.scene.occluders.size() << " polygons)\n";
+  scene << "# daylit bench scenes: " << f.grid.name << " (" << f.scene.occluders.size() << " polygons)\n";
   for (std::size_t k = 0; k < f.scene.occluders.size(); ++k) scene << polygon_text("void", f.scene.occluders[k], k);
   apertures << "void glass clear_glass\n0\n0\n3 0.96 0.96 0.96\n";
   for (std::size_t k = 0; k < f.scene.apertures.size(); ++k) apertures << polygon_text("clear_glass", f.scene.apertures[k].polygon, k);
   for (const Sensor& s : f.grid.sensors)
     grid << fmt::format("{:.17g} {:.17g} {:.17g} {:g} {:g} {:g}\n", s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y,
                         s.normal.z);
-  if (!scene || !apertures || !grid) throw Error(scene_path + ": cannot write the generated floor");
+  if (!scene || !apertures || !grid) throw Error(scene_path + ": cannot write the generated model");
 }
 
 struct FloorRow {
@@ -1020,8 +1021,13 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_floor_table(outputs.stage(file("scenes_floor.csv")), floor_rows);
   write_order_table(outputs.stage(file("scenes_occluders_one_core.csv")), order_rows);
   write_thread_table(outputs.stage(file("scenes_threads.csv")), thread_rows);
-  write_floor(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
+  write_model(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
               outputs.stage(file("scenes_floor_grid.pts")));
+  // The office with the most boxes of the scaling (665 polygons with 128), on the sensors it used.
+  Floor boxes{office_with_boxes(samples.front().scene, settings.boxes.back()), every_kth(samples.front().grid, settings.scaling_stride)};
+  boxes.grid.name = fmt::format("office with {} boxes", settings.boxes.back());
+  write_model(boxes, outputs.stage(file("scenes_boxes_scene.rad")), outputs.stage(file("scenes_boxes_apertures.rad")),
+              outputs.stage(file("scenes_boxes_grid.pts")));
   write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
   write_loglog_plot(outputs.stage(file("scenes_scaling.png")), scaling_plot(scaling, fits));
   outputs.commit();
@@ -1032,7 +1038,8 @@ int run_bench_scenes(const BenchOptions& opt) {
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
                              "scenes_pairs.csv, scenes_floor.csv, the largest floor (scenes_floor_scene.rad, "
-                             "scenes_floor_apertures.rad, scenes_floor_grid.pts), scenes_occluders_one_core.csv and scenes_threads.csv "
+                             "scenes_floor_apertures.rad, scenes_floor_grid.pts), the office with boxes (scenes_boxes_*), "
+                             "scenes_occluders_one_core.csv and scenes_threads.csv "
                              "into {} ({:.1f} s)\n",
                              opt.out, seconds_since(t0));
   return 0;
