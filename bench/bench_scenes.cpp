@@ -21,8 +21,21 @@
 // the office grid. Timed by CPU time over all threads (and wall time); the exponent is the
 // least-squares slope of log CPU time against log count.
 //
+// Office floor (one core): a generated floor of cellular offices (77 polygons and one glazed
+// window a room, up to 10,010 polygons and 130 windows), every window from sensors in a few rooms,
+// glazed and unglazed: CPU time per sensor–aperture pair, and how many pairs were decided without
+// clipping because walls hide the window (the largest floor is written out as .rad/.pts so that
+// another build, today's main for one, can be timed on it with `daylit df --threads 1`).
+// Occluders (one core): the office with k boxes in the street (25 … 10,025 polygons) in both
+// subtraction orders (SubtractionOrder), with the exponent of CPU time per sensor and the largest
+// relative difference of front_to_back from the default. Threads: random office sensors on 1 and
+// 2 threads, and the speed-up.
+//
 // Files: scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv,
-// scenes_pairs.csv (what the visibility routine left out, per grid).
+// scenes_pairs.csv (what the visibility routine left out, per grid), scenes_floor.csv,
+// scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts (and scenes_boxes_*: the office with
+// the most boxes of the scaling, on its sensors), scenes_occluders_one_core.csv,
+// scenes_threads.csv.
 
 #include <tbb/task_arena.h>
 
@@ -64,10 +77,13 @@ struct ScenesSettings {
   std::vector<int> boxes, panes, edges;
   std::size_t scaling_stride;  // the office grid's sensors used for the geometry scalings
   int scaling_runs;            // best of, as long as the runs so far took less than 2 s
+  std::vector<int> floor_rooms;  // the generated office floor: rooms per row (77 polygons a room)
+  std::vector<int> order_boxes;  // boxes in the street for the one-core table of subtraction orders
+  std::vector<std::size_t> thread_sensors;  // random office sensors timed on 1 and 2 threads
 };
 
 ScenesSettings settings_for(bool quick) {
-  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1};
+  if (quick) return {12, 16, 1, {16, 256, 4096, 65536}, {1e-3, 1e-6, 1e-9}, {250, 1000}, {0, 16}, {1, 8}, {4, 16}, 32, 1, {1, 2}, {0, 16}, {1000}};
   return {200,
           1,
           2,
@@ -78,7 +94,10 @@ ScenesSettings settings_for(bool quick) {
           {1, 2, 4, 8, 16, 32, 64},
           {4, 8, 16, 32, 64, 128},
           8,
-          3};
+          3,
+          {1, 4, 16, 65},
+          {0, 4, 16, 64, 128, 512, 2000},
+          {1000, 10000, 100000}};
 }
 
 struct Sample {
@@ -393,6 +412,279 @@ Scene office_with_polygon_window(const Scene& office, int k) {
   return s;
 }
 
+// ── A generated office floor: what real models are made of ─────────────────────────────────
+
+// Two rows of `rooms_per_row` cellular offices (4 m × 6 m × 3 m inside, partitions 0.2 m) on either
+// side of a 2 m corridor, each with the office sample's glazed window (2.4 m × 1.5 m, in the plane
+// of the facade's outer face) in a 0.3 m facade, a reveal, two mullions and a transom, four desks,
+// four chairs and a cabinet: 77 polygons a room, so 65 rooms a row make 10,010. Every room's window
+// is an aperture: from each sensor, all but one are other rooms' windows, seen (or not) through
+// walls and furniture, the case that made the cost follow the scene rather than what is visible.
+// The north row mirrors the south one (y → 14 − y, vertex order reversed to keep the normals).
+// Sensors: `sensors_per_room` (a 2 × 3 grid, or fewer) at 0.85 m in the rooms listed.
+struct Floor {
+  Scene scene;
+  SensorGrid grid;
+};
+
+Floor office_floor(const Scene& office, int rooms_per_row, const std::vector<int>& sensor_rooms) {
+  Floor f;
+  f.grid = {fmt::format("floor{}", 2 * rooms_per_row), "", {}};
+  const Aperture window = office.apertures.at(0);
+  Xoshiro256 rng(31);
+  for (int row = 0; row < 2; ++row)
+    for (int i = 0; i < rooms_per_row; ++i) {
+      const double x0 = 4.2 * i;
+      const std::string room = fmt::format("room {}{}", row == 0 ? 's' : 'n', i);
+      std::vector<Polygon> polygons;
+      const auto add = [&](std::vector<Vec3> v, const std::string& what) {
+        Polygon p;
+        p.vertices = std::move(v);
+        p.name = room + " " + what;
+        p.where = {"bench scenes: " + p.name, 0};
+        polygons.push_back(std::move(p));
+      };
+      const double X = x0 + 4;
+      add({{x0, 0, 0}, {X, 0, 0}, {X, 6, 0}, {x0, 6, 0}}, "floor");
+      add({{x0, 0, 3}, {x0, 6, 3}, {X, 6, 3}, {X, 0, 3}}, "ceiling");
+      add({{x0, 0, 0}, {x0, 6, 0}, {x0, 6, 3}, {x0, 0, 3}}, "west wall");
+      add({{X, 0, 0}, {X, 0, 3}, {X, 6, 3}, {X, 6, 0}}, "east wall");
+      add({{x0, 6, 0}, {X, 6, 0}, {X, 6, 3}, {x0, 6, 3}}, "corridor wall");
+      // Window wall around the opening x0+0.8..x0+3.2, z 0.9..2.4: inner face (normal +y) and outer face.
+      const double a = x0 + 0.8, b = x0 + 3.2;
+      const auto rect_y = [&](double y, double u0, double u1, double z0, double z1, bool plus, const std::string& what) {
+        std::vector<Vec3> v{{u0, y, z0}, {u0, y, z1}, {u1, y, z1}, {u1, y, z0}};
+        if (!plus) std::reverse(v.begin(), v.end());
+        add(std::move(v), what);
+      };
+      for (const auto& [y, plus, face] : {std::tuple{0.0, true, "inner"}, std::tuple{-0.3, false, "outer"}}) {
+        const double u0 = plus ? x0 : x0 - 0.1, u1 = plus ? X : X + 0.1;
+        rect_y(y, u0, u1, 0, 0.9, plus, std::string(face) + " sill wall");
+        rect_y(y, u0, u1, 2.4, 3, plus, std::string(face) + " head wall");
+        rect_y(y, u0, a, 0.9, 2.4, plus, std::string(face) + " west wall");
+        rect_y(y, b, u1, 0.9, 2.4, plus, std::string(face) + " east wall");
+      }
+      add({{a, 0, 0.9}, {b, 0, 0.9}, {b, -0.3, 0.9}, {a, -0.3, 0.9}}, "sill");
+      add({{a, 0, 2.4}, {a, -0.3, 2.4}, {b, -0.3, 2.4}, {b, 0, 2.4}}, "head");
+      add({{a, 0, 0.9}, {a, -0.3, 0.9}, {a, -0.3, 2.4}, {a, 0, 2.4}}, "west jamb");
+      add({{b, 0, 0.9}, {b, 0, 2.4}, {b, -0.3, 2.4}, {b, -0.3, 0.9}}, "east jamb");
+      const auto add_box = [&](const Vec3& lo, const Vec3& hi, const std::string& what) {
+        for (Polygon& p : box(lo, hi, room + " " + what)) polygons.push_back(std::move(p));
+      };
+      for (int m = 1; m <= 2; ++m) {
+        const double xm = a + 2.4 * m / 3;
+        add_box({xm - 0.025, -0.2, 0.9}, {xm + 0.025, -0.1, 2.4}, fmt::format("mullion {}", m));
+      }
+      add_box({a, -0.2, 1.875}, {b, -0.1, 1.925}, "transom");
+      for (int d = 0; d < 4; ++d) {
+        const double dx = x0 + 0.3 + 1.9 * (d % 2) + rng.uniform(0, 0.2), dy = 1.2 + 2.2 * (d / 2) + rng.uniform(0, 0.3);
+        add_box({dx, dy, 0}, {dx + 1.4, dy + 0.7, 0.75}, fmt::format("desk {}", d));
+        add_box({dx + 0.45, dy + 0.8, 0}, {dx + 0.95, dy + 1.3, 0.45}, fmt::format("chair {}", d));
+      }
+      add_box({x0 + 3.4, 4.5, 0}, {x0 + 3.9, 5.9, 1.8}, "cabinet");
+      Aperture pane = window;
+      pane.polygon.vertices = {{a, -0.3, 0.9}, {a, -0.3, 2.4}, {b, -0.3, 2.4}, {b, -0.3, 0.9}};
+      if (dot(newell_normal(pane.polygon.vertices), newell_normal(window.polygon.vertices)) < 0)
+        std::reverse(pane.polygon.vertices.begin(), pane.polygon.vertices.end());
+      pane.polygon.name = room + " window";
+      std::vector<Sensor> sensors;
+      if (std::find(sensor_rooms.begin(), sensor_rooms.end(), row * rooms_per_row + i) != sensor_rooms.end())
+        for (int sy = 0; sy < 3; ++sy)
+          for (int sx = 0; sx < 2; ++sx) sensors.push_back({{x0 + 1 + 2 * sx, 1 + 2 * sy, 0.85}, {0, 0, 1}});
+      if (row == 1) {  // mirror: y → 14 − y
+        const auto mirror = [](Vec3& v) { v.y = 14 - v.y; };
+        for (Polygon& p : polygons) {
+          for (Vec3& v : p.vertices) mirror(v);
+          std::reverse(p.vertices.begin(), p.vertices.end());
+        }
+        for (Vec3& v : pane.polygon.vertices) mirror(v);
+        std::reverse(pane.polygon.vertices.begin(), pane.polygon.vertices.end());
+        for (Sensor& sensor : sensors) mirror(sensor.position);
+      }
+      for (Polygon& p : polygons) f.scene.occluders.push_back(std::move(p));
+      f.scene.apertures.push_back(std::move(pane));
+      for (const Sensor& sensor : sensors) f.grid.sensors.push_back(sensor);
+    }
+  return f;
+}
+
+// A model as `daylit df` reads it, so that any build (today's, another branch's) can be timed on
+// the same model: occluders as `void polygon`, apertures as the office's glass.
+void write_model(const Floor& f, const std::string& scene_path, const std::string& apertures_path, const std::string& grid_path) {
+  const auto polygon_text = [](const std::string& modifier, const Polygon& p, std::size_t k) {
+    std::string t = fmt::format("{} polygon p{}\n0\n0\n{}\n", modifier, k, 3 * p.vertices.size());
+    for (const Vec3& v : p.vertices) t += fmt::format("  {:.17g} {:.17g} {:.17g}\n", v.x, v.y, v.z);
+    return t;
+  };
+  std::ofstream scene(scene_path), apertures(apertures_path), grid(grid_path);
+  scene << "# daylit bench scenes: " << f.grid.name << " (" << f.scene.occluders.size() << " polygons)\n";
+  for (std::size_t k = 0; k < f.scene.occluders.size(); ++k) scene << polygon_text("void", f.scene.occluders[k], k);
+  apertures << "void glass clear_glass\n0\n0\n3 0.96 0.96 0.96\n";
+  for (std::size_t k = 0; k < f.scene.apertures.size(); ++k) apertures << polygon_text("clear_glass", f.scene.apertures[k].polygon, k);
+  for (const Sensor& s : f.grid.sensors)
+    grid << fmt::format("{:.17g} {:.17g} {:.17g} {:g} {:g} {:g}\n", s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y,
+                        s.normal.z);
+  if (!scene || !apertures || !grid) throw Error(scene_path + ": cannot write the generated model");
+}
+
+struct FloorRow {
+  int rooms;
+  std::string glazing;  // glazed (the office's glass) or unglazed (the same transmittance at every angle)
+  std::size_t polygons, pieces, apertures, sensors;
+  double cpu_seconds, seconds;
+  VisibilityCounters counters;
+  double sc_mean;
+};
+
+// One core, serial: every aperture from every sensor of the rooms listed; best of `runs`.
+std::vector<FloorRow> measure_floor(const Sample& office, const std::vector<int>& rooms_per_row, int runs, bench::StatusLine& status,
+                                    Floor& largest) {
+  std::vector<FloorRow> rows;
+  for (const int r : rooms_per_row) {
+    // Sensors in up to four rooms spread along the south row and one of the north row.
+    std::vector<int> sensor_rooms;
+    for (int k = 0; k < std::min(r, 4); ++k) sensor_rooms.push_back(k * r / std::min(r, 4));
+    sensor_rooms.push_back(r + r / 2);
+    Floor floor = office_floor(office.scene, r, sensor_rooms);
+    for (const bool glazed : {true, false}) {
+      Scene scene = floor.scene;
+      if (!glazed)
+        for (Aperture& a : scene.apertures) a.angular_transmittance.clear();
+      status.show(fmt::format("bench scenes: office floor, {} rooms, {}, {} sensors", 2 * r, glazed ? "glazed" : "unglazed",
+                              floor.grid.sensors.size()));
+      const VisibilityEngine engine(scene, GeometryMode::exact);
+      SerialRun best;
+      best.cpu_seconds = 1e300;
+      for (int run = 0; run < runs; ++run) {
+        SerialRun t = run_serial(engine, scene, floor.grid);
+        if (t.cpu_seconds < best.cpu_seconds) best = std::move(t);
+      }
+      rows.push_back({2 * r, glazed ? "glazed" : "unglazed", scene.occluders.size(), engine.occluder_piece_count(), scene.apertures.size(),
+                      floor.grid.sensors.size(), best.cpu_seconds, best.seconds, best.counters, mean(best.sc)});
+    }
+    if (r == rooms_per_row.back()) largest = std::move(floor);
+  }
+  return rows;
+}
+
+void write_floor_table(const std::string& path, const std::vector<FloorRow>& rows) {
+  std::ofstream f(path);
+  f << "rooms,glazing,occluder_polygons,occluder_pieces,apertures,sensors,pairs,cpu_s,wall_s,cpu_per_sensor_s,cpu_per_pair_s,"
+       "pairs_not_facing,pairs_unobstructed,pairs_covered,pairs_clipped,pairs_rational,occluder_pieces_tested,occluder_pieces_clipped,"
+       "sc_mean_percent\n";
+  for (const FloorRow& r : rows) {
+    const VisibilityCounters& c = r.counters;
+    const double pairs = double(r.sensors * r.apertures);
+    f << fmt::format("{},{},{},{},{},{},{},{:.4e},{:.4e},{:.4e},{:.4e},{},{},{},{},{},{},{},{:.12g}\n", r.rooms, r.glazing, r.polygons,
+                     r.pieces, r.apertures, r.sensors, r.sensors * r.apertures, r.cpu_seconds, r.seconds, r.cpu_seconds / double(r.sensors),
+                     r.cpu_seconds / pairs, c.pairs_not_facing, c.pairs_unobstructed, c.pairs_covered, c.pairs_clipped, c.pairs_rational,
+                     c.occluders_tested, c.occluders_clipped, r.sc_mean);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
+// ── One core: occluders, in the order as built and front to back ───────────────────────────
+
+struct OrderRow {
+  int boxes;
+  std::size_t polygons;
+  std::string order;  // as_built, front_to_back
+  std::size_t sensors;
+  double cpu_seconds;
+  VisibilityCounters counters;
+  double max_relative_difference;  // of SC against as_built at the same sensors (0 for as_built)
+};
+
+// The office with k boxes in the street (as in the scaling), one core, serial, on every
+// `stride`-th sensor of the grid (4 and 64 times fewer above 256 and 1,024 boxes: as built, the
+// 10,025-polygon case costs seconds per sensor), in both subtraction orders.
+std::vector<OrderRow> measure_orders(const Sample& office, const std::vector<int>& boxes, std::size_t stride, bench::StatusLine& status) {
+  std::vector<OrderRow> rows;
+  for (const int k : boxes) {
+    const Scene scene = office_with_boxes(office.scene, k);
+    const SensorGrid grid = every_kth(office.grid, (k > 1024 ? 64 : k > 256 ? 4 : 1) * stride);
+    std::vector<double> as_built;
+    for (const SubtractionOrder order : {SubtractionOrder::as_built, SubtractionOrder::front_to_back}) {
+      const bool front = order == SubtractionOrder::front_to_back;
+      status.show(fmt::format("bench scenes: one core, {} boxes, {}, {} sensors", k, front ? "front to back" : "as built", grid.sensors.size()));
+      const VisibilityEngine engine(scene, GeometryMode::exact, order);
+      const SerialRun r = run_serial(engine, scene, grid);
+      double worst = 0;
+      if (!front) as_built = r.sc;
+      else
+        for (std::size_t i = 0; i < r.sc.size(); ++i)
+          if (as_built[i] != r.sc[i]) worst = std::max(worst, std::abs(r.sc[i] - as_built[i]) / std::abs(as_built[i]));
+      rows.push_back({k, scene.occluders.size(), front ? "front_to_back" : "as_built", grid.sensors.size(), r.cpu_seconds, r.counters, worst});
+    }
+  }
+  return rows;
+}
+
+// Least-squares slope of log(CPU time per sensor) against log(occluder polygons), per order.
+double order_exponent(const std::vector<OrderRow>& rows, const std::string& order) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double n = 0;
+  for (const OrderRow& r : rows)
+    if (r.order == order) {
+      const double x = std::log(double(r.polygons)), y = std::log(r.cpu_seconds / double(r.sensors));
+      sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+    }
+  return n >= 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
+}
+
+void write_order_table(const std::string& path, const std::vector<OrderRow>& rows) {
+  std::ofstream f(path);
+  f << "boxes,occluder_polygons,order,sensors,cpu_s,cpu_per_sensor_s,occluder_pieces_clipped_per_pair,shadows_skipped_per_pair,"
+       "pairs_covered,max_relative_difference_to_as_built\n";
+  for (const OrderRow& r : rows) {
+    const double pairs = double(std::max<std::uint64_t>(r.counters.pairs, 1));
+    f << fmt::format("{},{},{},{},{:.4e},{:.4e},{:.3f},{:.3f},{},{:.3e}\n", r.boxes, r.polygons, r.order, r.sensors, r.cpu_seconds,
+                     r.cpu_seconds / double(r.sensors), double(r.counters.occluders_clipped) / pairs,
+                     double(r.counters.occluders_skipped) / pairs, r.counters.pairs_covered, r.max_relative_difference);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
+// ── Threads: the same work on 1 and 2 threads ─────────────────────────────────────────────
+
+struct ThreadRow {
+  std::size_t sensors;
+  int threads;
+  double seconds, cpu_seconds;
+};
+
+// Random office sensors, exact geometry, in a TBB arena of 1 and of 2 threads (best of `runs`).
+// On a machine whose cores are shared the wall-clock speed-up says more about the load than the
+// code; the CPU time says what the work costs.
+std::vector<ThreadRow> measure_threads(const Sample& office, const std::vector<std::size_t>& counts, int runs, bench::StatusLine& status) {
+  std::vector<ThreadRow> rows;
+  const VisibilityEngine engine(office.scene, GeometryMode::exact);
+  for (const std::size_t n : counts) {
+    const SensorGrid grid = random_office_grid(n);
+    for (const int threads : {1, 2}) {
+      status.show(fmt::format("bench scenes: {} sensors on {} thread{}", n, threads, threads > 1 ? "s" : ""));
+      tbb::task_arena arena(threads);
+      Timed t{};
+      arena.execute([&] { t = time_parallel(engine, office.scene, grid, runs); });
+      rows.push_back({n, threads, t.seconds, t.cpu_seconds});
+    }
+  }
+  return rows;
+}
+
+void write_thread_table(const std::string& path, const std::vector<ThreadRow>& rows) {
+  std::ofstream f(path);
+  f << "sensors,threads,wall_s,cpu_s,cpu_per_sensor_s,speed_up_wall\n";
+  for (const ThreadRow& r : rows) {
+    double one = 0;
+    for (const ThreadRow& q : rows)
+      if (q.sensors == r.sensors && q.threads == 1) one = q.seconds;
+    f << fmt::format("{},{},{:.4e},{:.4e},{:.4e},{:.3f}\n", r.sensors, r.threads, r.seconds, r.cpu_seconds, r.cpu_seconds / double(r.sensors),
+                     one / r.seconds);
+  }
+  if (!f) throw Error(path + ": cannot write");
+}
+
 std::vector<ScalingRow> measure_scaling(const Sample& office, const ScenesSettings& settings, bench::StatusLine& status,
                                         PairsRow& large_grid_pairs) {
   std::vector<ScalingRow> rows;
@@ -644,6 +936,44 @@ void print_summary(std::ostream& out, const std::vector<ErrorRow>& rows, const s
   out << "\nThe machine may be shared: CPU times are what the work costs, wall times what it took here.\n";
 }
 
+void print_order_summary(std::ostream& out, const std::vector<OrderRow>& rows) {
+  out << "\n## Occluders, one core: the subtraction order as built (the default) and front to back\n\n";
+  out << "| boxes | occluder polygons | order | sensors | CPU per sensor | pieces clipped per pair | shadows skipped per pair | max rel. "
+         "difference to as built |\n|---|---|---|---|---|---|---|---|\n";
+  for (const OrderRow& r : rows) {
+    const double pairs = double(std::max<std::uint64_t>(r.counters.pairs, 1));
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {:.1f} | {:.2e} |\n", r.boxes, r.polygons, r.order, r.sensors,
+                       seconds_text(r.cpu_seconds / double(r.sensors)), double(r.counters.occluders_clipped) / pairs,
+                       double(r.counters.occluders_skipped) / pairs, r.max_relative_difference);
+  }
+  out << fmt::format("\nexponent in the number of occluder polygons (CPU time per sensor): as built {:.2f}, front to back {:.2f}\n",
+                     order_exponent(rows, "as_built"), order_exponent(rows, "front_to_back"));
+}
+
+void print_thread_summary(std::ostream& out, const std::vector<ThreadRow>& rows) {
+  out << "\n## Threads (office, random sensors, exact)\n\n| sensors | threads | wall | CPU | CPU per sensor | speed-up (wall) |\n"
+         "|---|---|---|---|---|---|\n";
+  for (const ThreadRow& r : rows) {
+    double one = 0;
+    for (const ThreadRow& q : rows)
+      if (q.sensors == r.sensors && q.threads == 1) one = q.seconds;
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.2f} |\n", r.sensors, r.threads, seconds_text(r.seconds), seconds_text(r.cpu_seconds),
+                       seconds_text(r.cpu_seconds / double(r.sensors)), one / r.seconds);
+  }
+}
+
+void print_floor_summary(std::ostream& out, const std::vector<FloorRow>& rows) {
+  out << "\n## The generated office floor (one core; every window from sensors in a few rooms)\n\n";
+  out << "| rooms | glazing | occluder polygons | apertures | pairs | CPU per pair | covered | clipped | pieces clipped per pair |\n";
+  out << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const FloorRow& r : rows) {
+    const double pairs = double(r.sensors * r.apertures);
+    out << fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} % | {:.1f} % | {:.1f} |\n", r.rooms, r.glazing, r.polygons, r.apertures,
+                       r.sensors * r.apertures, seconds_text(r.cpu_seconds / pairs), 100 * double(r.counters.pairs_covered) / pairs,
+                       100 * double(r.counters.pairs_clipped) / pairs, double(r.counters.occluders_clipped) / pairs);
+  }
+}
+
 }  // namespace
 
 int run_bench_scenes(const BenchOptions& opt) {
@@ -659,6 +989,10 @@ int run_bench_scenes(const BenchOptions& opt) {
   std::vector<ErrorRow> rows;
   std::vector<PairsRow> pairs;
   std::vector<ScalingRow> scaling;
+  std::vector<FloorRow> floor_rows;
+  std::vector<OrderRow> order_rows;
+  std::vector<ThreadRow> thread_rows;
+  Floor floor;
   {
     bench::StatusLine status(!opt.quiet && stderr_is_terminal());
     for (const Sample& s : samples) {
@@ -669,6 +1003,9 @@ int run_bench_scenes(const BenchOptions& opt) {
     PairsRow large{};
     scaling = measure_scaling(samples.front(), settings, status, large);
     pairs.push_back(large);
+    floor_rows = measure_floor(samples.front(), settings.floor_rooms, settings.timing_runs, status, floor);
+    order_rows = measure_orders(samples.front(), settings.order_boxes, settings.scaling_stride, status);
+    thread_rows = measure_threads(samples.front(), settings.thread_sensors, settings.scaling_runs, status);
     status.clear();
   }
   const std::vector<Fit> fits = fit_exponents(scaling);
@@ -681,13 +1018,29 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_scaling_table(outputs.stage(file("scenes_scaling.csv")), scaling);
   write_fit_table(outputs.stage(file("scenes_scaling_fit.csv")), fits);
   write_pairs_table(outputs.stage(file("scenes_pairs.csv")), pairs);
+  write_floor_table(outputs.stage(file("scenes_floor.csv")), floor_rows);
+  write_order_table(outputs.stage(file("scenes_occluders_one_core.csv")), order_rows);
+  write_thread_table(outputs.stage(file("scenes_threads.csv")), thread_rows);
+  write_model(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
+              outputs.stage(file("scenes_floor_grid.pts")));
+  // The office with the most boxes of the scaling (665 polygons with 128), on the sensors it used.
+  Floor boxes{office_with_boxes(samples.front().scene, settings.boxes.back()), every_kth(samples.front().grid, settings.scaling_stride)};
+  boxes.grid.name = fmt::format("office with {} boxes", settings.boxes.back());
+  write_model(boxes, outputs.stage(file("scenes_boxes_scene.rad")), outputs.stage(file("scenes_boxes_apertures.rad")),
+              outputs.stage(file("scenes_boxes_grid.pts")));
   write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
   write_loglog_plot(outputs.stage(file("scenes_scaling.png")), scaling_plot(scaling, fits));
   outputs.commit();
   print_summary(std::cout, rows, results, scaling, fits, pairs, settings);  // the results: stdout even with --quiet
+  print_floor_summary(std::cout, floor_rows);
+  print_order_summary(std::cout, order_rows);
+  print_thread_summary(std::cout, thread_rows);
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
-                             "scenes_pairs.csv into {} ({:.1f} s)\n",
+                             "scenes_pairs.csv, scenes_floor.csv, the largest floor (scenes_floor_scene.rad, "
+                             "scenes_floor_apertures.rad, scenes_floor_grid.pts), the office with boxes (scenes_boxes_*), "
+                             "scenes_occluders_one_core.csv and scenes_threads.csv "
+                             "into {} ({:.1f} s)\n",
                              opt.out, seconds_since(t0));
   return 0;
 }

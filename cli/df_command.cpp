@@ -34,6 +34,7 @@ struct DfOptions {
   ModelFiles files;
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
+  std::string order = "as-built";
   std::string out, summary, image;
   int threads = 0;
   bool quiet = false;
@@ -128,7 +129,7 @@ int run_df(const DfOptions& opt) {
         std::cerr << "notice: " << name << " is not used: the reflected components are computed with --components all\n";
   }
 
-  const VisibilityEngine engine(scene, mode);
+  const VisibilityEngine engine(scene, mode, opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
 
   std::vector<GridReport> reports;
@@ -202,6 +203,7 @@ int run_df(const DfOptions& opt) {
   nlohmann::json summary;
   summary["sky"] = std::string(sky_model_name(sky));
   summary["geometry"] = opt.geometry;
+  summary["subtraction_order"] = opt.order;
   summary["threads"] = threads;
   if (reflections)
     summary["components"] = reflection_summary(*reflections, used_materials, opt, reflections_time_s);
@@ -308,6 +310,11 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "Visibility arithmetic: exact (default: certified intervals, rationals where needed), float (plain "
                  "doubles, for comparison) or rational (rationals throughout: a slow reference)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
+  df->add_option("--subtraction-order", opt->order,
+                 "Order in which occluders' shadows are subtracted: as-built (default: results to the last bit as before) or "
+                 "front-to-back (nearest first, shadows hidden behind others skipped by boxes: much faster among many "
+                 "occluders; the same region partitioned otherwise, so results differ in the last digits, a few 1e-14)")
+      ->check(CLI::IsMember({"as-built", "front-to-back"}));
   df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   df->add_option("--site", files.site,
                  "Site JSON: {\"latitude_deg\", \"longitude_deg\", \"elevation_m\", \"north_deg\"} (north_deg: true north's angle "

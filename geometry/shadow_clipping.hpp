@@ -26,6 +26,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <type_traits>
@@ -228,46 +229,127 @@ class ShadowClipper {
   // `horizon`: cut to the directions above p's horizontal plane as well (skies; not luminaires).
   // `beyond`: blockers beyond the piece's plane block too (skies); false cuts every blocker to p's
   // side of that plane first (luminaires: VisibilityOptions::occluders_beyond).
-  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, bool horizon = true, bool beyond = true)
+  // `skip_disjoint`: a shadow is not subtracted from a piece whose bounding box its own misses
+  // (SubtractionOrder::front_to_back): the same set, another partition.
+  ShadowClipper(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, bool horizon = true, bool beyond = true,
+                bool skip_disjoint = false)
       : p_in_(p), n_in_(n), piece_(piece), sh_(sh), inside_(-sh), k_(piece.drop_axis), i_((k_ + 1) % 3),
-        j_((k_ + 2) % 3), horizon_(horizon), beyond_(beyond) {}
+        j_((k_ + 2) % 3), horizon_(horizon), beyond_(beyond), skip_disjoint_(skip_disjoint) {}
+
+  // Blockers whose shadows were not built because their boxes missed every remaining piece.
+  std::uint64_t skipped() const noexcept { return skipped_; }
 
   // Appends the visible part of the piece, as positively oriented loops, to `region`, and with
   // `sources` the source of each of their edges to region.edge_sources.
   void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region, bool sources = false) {
-    const auto& wv = piece_.vertices;
     std::vector<Vertex3<FT>> w;
+    if (!prepare(w)) return;
+    for (const auto& P : visible_pieces(blockers, w)) {
+      region.loops.push_back(directions(P));
+      if (sources) region.edge_sources.push_back(edge_sources(P));
+    }
+  }
+
+  // Whether the blockers leave nothing of the piece, without building any direction. Exact on the
+  // exact path (every sign is the exact sign): then any superset of the blockers, in any order,
+  // leaves nothing either.
+  bool hides_all(const std::vector<const ConvexPiece*>& blockers) {
+    std::vector<Vertex3<FT>> w;
+    return !prepare(w) || visible_pieces(blockers, w).empty();
+  }
+
+ private:
+  using V3 = Vertex3<FT>;
+  using V2 = Vertex2<FT>;
+
+  // The piece relative to p, clipped to the receiver's hemisphere and horizon; false if nothing
+  // is left.
+  bool prepare(std::vector<Vertex3<FT>>& w) {
+    const auto& wv = piece_.vertices;
     for (std::size_t e = 0; e < wv.size(); ++e) {
       const Vec r = relative(wv[e]);
       w.push_back({{r[0], r[1], r[2]}, &wv[e], LineId::segment(wv[e], wv[(e + 1) % wv.size()])});
     }
     w0_ = w[0];
     N_ = cross(sub(w[piece_.base_b], w0_), sub(w[piece_.base_c], w0_));
-    if (!clip_to_receiver(w)) return;
+    if (!clip_to_receiver(w)) return false;
     for (const auto& x : w) cone_lines_.push_back(x.out);
-
-    blockers_ = &blockers;
-    std::vector<Shadow> shadows;
-    for (std::size_t b = 0; b < blockers.size(); ++b)
-      if (auto shadow = shadow_of(*blockers[b], int(b), w)) shadows.push_back(std::move(*shadow));
-
-    std::vector<std::vector<Vertex2<FT>>> pieces(1);
-    for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
-    for (const auto& shadow : shadows) {
-      std::vector<std::vector<Vertex2<FT>>> next;
-      for (const auto& P : pieces) subtract(P, shadow, next);
-      pieces = std::move(next);
-      if (pieces.empty()) return;
-    }
-    for (const auto& P : pieces) {
-      region.loops.push_back(directions(P));
-      if (sources) region.edge_sources.push_back(edge_sources(P));
-    }
+    return true;
   }
 
- private:
-  using V3 = Vertex3<FT>;
-  using V2 = Vertex2<FT>;
+  // The clipped piece minus the blockers' shadows, subtracted in the order given, as convex pieces
+  // in the aperture's plane. Each shadow is built only when it is subtracted, so that nothing is
+  // built once the piece is all hidden. The shadows and their order are those of building them
+  // all first, so the result is the same; only an uncertain sign in a shadow that is never built
+  // no longer sends an empty region to the rationals (whose answer is the same empty region).
+  std::vector<std::vector<Vertex2<FT>>> visible_pieces(const std::vector<const ConvexPiece*>& blockers,
+                                                       const std::vector<Vertex3<FT>>& w) {
+    blockers_ = &blockers;
+    std::vector<std::vector<Vertex2<FT>>> pieces(1);
+    for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
+    for (std::size_t b = 0; b < blockers.size(); ++b) {
+      std::optional<Box2> box;
+      if (skip_disjoint_) {
+        box = projected_box(*blockers[b]);
+        if (box && std::none_of(pieces.begin(), pieces.end(), [&](const auto& P) { return box->meets(box_of(P)); })) {
+          ++skipped_;
+          continue;
+        }
+      }
+      const std::optional<Shadow> shadow = shadow_of(*blockers[b], int(b), w);
+      if (!shadow) continue;
+      std::vector<std::vector<Vertex2<FT>>> next;
+      for (auto& P : pieces) {
+        if (box && !box->meets(box_of(P)))
+          next.push_back(std::move(P));
+        else
+          subtract(P, *shadow, next);
+      }
+      pieces = std::move(next);
+      if (pieces.empty()) break;
+    }
+    return pieces;
+  }
+
+  // A box in the aperture's plane's coordinates (u, v) relative to p.
+  struct Box2 {
+    double u0 = HUGE_VAL, u1 = -HUGE_VAL, v0 = HUGE_VAL, v1 = -HUGE_VAL;
+    bool meets(const Box2& o) const { return u0 <= o.u1 && o.u0 <= u1 && v0 <= o.v1 && o.v0 <= v1; }
+  };
+  // Encloses the piece: each coordinate's interval (exact bounds of the number it carries).
+  static Box2 box_of(const std::vector<V2>& P) {
+    Box2 b;
+    for (const V2& x : P) {
+      const auto [ul, uh] = CGAL::to_interval(x.u);
+      const auto [vl, vh] = CGAL::to_interval(x.v);
+      b.u0 = std::min(b.u0, ul), b.u1 = std::max(b.u1, uh), b.v0 = std::min(b.v0, vl), b.v1 = std::max(b.v1, vh);
+    }
+    return b;
+  }
+  // Encloses the central projection of the whole blocker onto the aperture's plane (so that of its
+  // part in the cone), in double widened by 1e-8 of its reach from p. With N·d and h at least 1e-6
+  // of |N||d| and |N||w0 − p| (else nothing: p nearly in the aperture's plane, or a vertex not
+  // certainly in front of p, where the projection is unbounded), t = h/(N·d) is within 2e-9
+  // relative of its value, and u, v within that of the reach: the margin covers it five times.
+  std::optional<Box2> projected_box(const ConvexPiece& blocker) const {
+    const auto& wv = piece_.vertices;
+    const Vec3 N = daylit::cross(wv[piece_.base_b] - wv[0], wv[piece_.base_c] - wv[0]);
+    const double h = daylit::dot(N, wv[0] - p_in_);
+    if (std::abs(h) < 1e-6 * norm(N) * norm(wv[0] - p_in_)) return std::nullopt;  // p nearly in the plane: t uncertain
+    Box2 b;
+    double reach = 0;
+    for (const Vec3& v : blocker.vertices) {
+      const Vec3 d = v - p_in_;
+      const double along = daylit::dot(N, d);
+      if (!(along * h > 0) || std::abs(along) < 1e-6 * norm(N) * norm(d)) return std::nullopt;
+      const double t = h / along, u = d[i_] * t, vv = d[j_] * t;
+      b.u0 = std::min(b.u0, u), b.u1 = std::max(b.u1, u), b.v0 = std::min(b.v0, vv), b.v1 = std::max(b.v1, vv);
+      reach = std::max({reach, std::abs(u), std::abs(vv)});
+    }
+    const double margin = 1e-8 * reach;
+    b.u0 -= margin, b.u1 += margin, b.v0 -= margin, b.v1 += margin;
+    return b;
+  }
   // A shadow, counter-clockwise; `reversed` when its edges run against the direction of the
   // occluder edges they lie on (the projection reversed the occluder's orientation).
   struct Shadow {
@@ -752,6 +834,8 @@ class ShadowClipper {
   const ConvexPiece& piece_;
   int sh_, inside_, k_, i_, j_;
   bool horizon_, beyond_;
+  bool skip_disjoint_ = false;
+  std::uint64_t skipped_ = 0;
   V3 w0_;
   Vec N_;
   std::vector<LineId> cone_lines_;  // the line of each edge of the clipped aperture piece

@@ -172,18 +172,164 @@ struct BvhNode {
   int first = 0, count = 0;   // leaf: range in the ordered piece indices
 };
 
+// Squared distance from p to the box (0 inside): the key of the nearest-first traversal.
+double distance2(const Box& box, const Vec3& p) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = std::max({box.lo[k] - p[k], 0.0, p[k] - box.hi[k]});
+    d += e * e;
+  }
+  return d;
+}
+
+// An occluder polygon as the union of its convex pieces, for the whole-piece cover test
+// (VisibilityEngine::Impl::covers). `testable`: all its pieces lie exactly in the plane of the
+// first (so that central projection from a receiver off that plane is one-to-one on it) and its
+// boundary is short enough for the test to cost less than the clipping it may save.
+struct OccluderPatch {
+  std::vector<int> pieces;                       // indices in Impl::occluders
+  std::vector<std::pair<Vec3, Vec3>> boundary;   // edges of its pieces that no other of its pieces has
+  bool testable = false;
+};
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
 
 struct VisibilityEngine::Impl {
   GeometryMode mode;
+  SubtractionOrder order_of_subtraction = SubtractionOrder::as_built;
   std::vector<ConvexPiece> occluders;
   std::vector<Box> occluder_boxes;
   std::vector<int> order;  // piece indices in BVH leaf order
   std::vector<BvhNode> nodes;
+  std::vector<int> rank;   // rank[slot]: where the piece order[slot] comes in the traversal that
+                           // fixes the order of subtraction (right child first, as built)
+  std::vector<OccluderPatch> patches;  // by occluder polygon (ConvexPiece::source)
   std::vector<std::vector<ConvexPiece>> apertures;
   std::size_t aperture_pieces = 0;
+
+  // The rank of every slot in the depth-first order that visits the right child first: the order
+  // in which collect() once visited the survivors, and in which their shadows are still
+  // subtracted (the partition into loops, and so every kernel sum, depends on it).
+  void rank_slots() {
+    rank.assign(order.size(), 0);
+    int next = 0;
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const BvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node.left >= 0) {
+        stack.push_back(node.left);
+        stack.push_back(node.right);
+        continue;
+      }
+      for (int i = node.first; i < node.first + node.count; ++i) rank[i] = next++;
+    }
+  }
+
+  // Groups the pieces by polygon and finds each polygon's boundary: an edge (unordered pair of
+  // input vertices) that only one of its pieces has. The pieces of a triangulation share their
+  // inner edges vertex for vertex; an inner edge taken for a boundary edge only makes the test
+  // stricter.
+  void build_patches(std::size_t polygons) {
+    constexpr std::size_t kMaxBoundary = 64;
+    patches.assign(polygons, {});
+    for (std::size_t i = 0; i < occluders.size(); ++i) patches[occluders[i].source].pieces.push_back(int(i));
+    const auto less = [](const Vec3& a, const Vec3& b) {
+      return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
+    };
+    for (OccluderPatch& patch : patches) {
+      if (patch.pieces.empty()) continue;
+      const ConvexPiece& first = occluders[patch.pieces[0]];
+      const auto& fv = first.vertices;
+      bool planar = true;
+      std::vector<std::pair<Vec3, Vec3>> edges;
+      for (const int i : patch.pieces) {
+        const auto& v = occluders[i].vertices;
+        for (std::size_t e = 0; e < v.size(); ++e) {
+          planar &= ExactSigns::orient3(fv[0], fv[first.base_b], fv[first.base_c], v[e]) == 0;
+          Vec3 a = v[e], b = v[(e + 1) % v.size()];
+          if (less(b, a)) std::swap(a, b);
+          edges.emplace_back(a, b);
+        }
+      }
+      if (!planar) continue;
+      const auto pair_less = [&](const std::pair<Vec3, Vec3>& x, const std::pair<Vec3, Vec3>& y) {
+        return less(x.first, y.first) || (x.first == y.first && less(x.second, y.second));
+      };
+      std::sort(edges.begin(), edges.end(), pair_less);
+      for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        if (j - i == 1) patch.boundary.push_back(edges[i]);
+        i = j;
+      }
+      patch.testable = patch.boundary.size() <= kMaxBoundary;
+    }
+  }
+
+  // Whether polygon `patch` hides all of aperture piece w from p, by exact predicates on the input;
+  // false when it does not or when the test cannot tell. With Π the polygon's plane and p off it:
+  // if every vertex of w lies strictly beyond Π seen from p (with the occluders beyond: the rays
+  // p→w reach Π at t > 0; without: the segments (p, w) cross it), the rays through w meet Π in a
+  // convex polygon Q, and central projection maps the polygon's pieces one-to-one onto Π's
+  // points. Q lies in the union of the pieces iff no boundary edge of the polygon meets the
+  // interior of Q and one interior point of Q lies in a piece (the interior of Q is connected).
+  // An edge (a, b) of Π misses the interior of Q iff a line separates them (2-D separating axes:
+  // the lines of Q's edges, planes through p and w's edges, or the edge's own line, the plane
+  // through p, a, b). The interior point is the ray through g = (w0 + w_b + w_c)/3, inside the
+  // base triangle of w. Then the exact subtraction leaves nothing of the piece whatever the other
+  // blockers and their order: the region is empty, the result of today's computation exactly
+  // (every sign there is the exact sign; a partition of an empty set has no loops).
+  template <class Signs>
+  bool covers(const OccluderPatch& patch, const Vec3& p, const ConvexPiece& w, int sh, bool beyond) const {
+    const ConvexPiece& first = occluders[patch.pieces[0]];
+    const auto& fv = first.vertices;
+    const Vec3 &o0 = fv[0], &ob = fv[first.base_b], &oc = fv[first.base_c];
+    const int sp = Signs::orient3(o0, ob, oc, p);
+    if (sp == 0) return false;
+    const auto& wv = w.vertices;
+    for (const Vec3& v : wv)
+      if (Signs::normal_dot_diff(o0, ob, oc, v, beyond ? p : o0) != -sp) return false;
+    const int inside = -sh;
+    for (const auto& [a, b] : patch.boundary) {
+      int lo = 1, hi = -1;
+      for (const Vec3& v : wv) {
+        const int s = Signs::orient3(p, a, b, v);
+        lo = std::min(lo, s), hi = std::max(hi, s);
+      }
+      if (lo >= 0 || hi <= 0) continue;  // w on one side of the edge's line
+      bool separated = false;
+      for (std::size_t e = 0; e < wv.size() && !separated; ++e) {
+        const Vec3 &c = wv[e], &d = wv[(e + 1) % wv.size()];
+        separated = inside * Signs::orient3(p, c, d, a) <= 0 && inside * Signs::orient3(p, c, d, b) <= 0;
+      }
+      if (!separated) return false;
+    }
+    const Vec3 &w0 = wv[0], &wb = wv[w.base_b], &wc = wv[w.base_c];
+    // sign det[a − p, b − p, g − p], times 3: exact on the input.
+    const auto orient_g = [&](const Vec3& a, const Vec3& b) {
+      return predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        const T ax = T(a.x) - T(p.x), ay = T(a.y) - T(p.y), az = T(a.z) - T(p.z);
+        const T bx = T(b.x) - T(p.x), by = T(b.y) - T(p.y), bz = T(b.z) - T(p.z);
+        const T gx = T(w0.x) + T(wb.x) + T(wc.x) - (T(p.x) + T(p.x) + T(p.x));
+        const T gy = T(w0.y) + T(wb.y) + T(wc.y) - (T(p.y) + T(p.y) + T(p.y));
+        const T gz = T(w0.z) + T(wb.z) + T(wc.z) - (T(p.z) + T(p.z) + T(p.z));
+        return gx * (ay * bz - az * by) + gy * (az * bx - ax * bz) + gz * (ax * by - ay * bx);
+      });
+    };
+    for (const int i : patch.pieces) {
+      const auto& v = occluders[i].vertices;
+      // The pieces share the plane and the orientation (one drop axis per polygon): inside the
+      // cone over a piece, −sp · orient3(p, a, b, x) ≥ 0 on each edge (a, b).
+      bool in = true;
+      for (std::size_t e = 0; e < v.size() && in; ++e) in = -sp * orient_g(v[e], v[(e + 1) % v.size()]) >= 0;
+      if (in) return true;
+    }
+    return false;
+  }
 
   int build(int first, int count) {
     BvhNode node;
@@ -243,10 +389,20 @@ struct VisibilityEngine::Impl {
     return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, from) >= 0; });
   }
 
+  // The occluder pieces that may hide part of w from p, in the order of subtraction (rank). The
+  // hierarchy is walked nearest box first, so that what is near the receiver (its own room's walls)
+  // comes first; in the exact modes each of the first kCoverTries polygons met is tested for
+  // hiding all of w (covers), and the walk stops when one does: returns true, and `out` is then
+  // to be ignored. `nearest`: the first kNearest survivors met, for the trial in evaluate(). The
+  // float path never stops (its subtraction rounds, and may leave slivers that
+  // it must report as the same code always has).
   template <class Signs>
-  void collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
-               std::vector<const ConvexPiece*>& out, VisibilityCounters& counters) const {
-    if (nodes.empty()) return;
+  bool collect(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
+               std::vector<const ConvexPiece*>& out, std::vector<const ConvexPiece*>& nearest, VisibilityCounters& counters) const {
+    if (nodes.empty()) return false;
+    constexpr int kCoverTries = 6;
+    constexpr std::size_t kNearest = 12;
+    const bool try_cover = mode != GeometryMode::floating;
     const bool horizon = options.clip_to_horizon, beyond = options.occluders_beyond;
     // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
     std::vector<CullPlane> planes;
@@ -265,6 +421,9 @@ struct VisibilityEngine::Impl {
       const Vec3 a = wv[e] - p, b = wv[(e + 1) % wv.size()] - p;
       planes.push_back({double(-sh) * cross(a, b), norm(a) * norm(b)});
     }
+    std::vector<std::pair<int, const ConvexPiece*>> found;
+    std::size_t tried[kCoverTries];
+    int tries = 0;
     int stack[128];
     int top = 0;
     stack[top++] = 0;
@@ -276,8 +435,9 @@ struct VisibilityEngine::Impl {
         continue;
       }
       if (node.left >= 0) {
-        stack[top++] = node.left;
-        stack[top++] = node.right;
+        const bool left_first = distance2(nodes[node.left].box, p) <= distance2(nodes[node.right].box, p);
+        stack[top++] = left_first ? node.right : node.left;
+        stack[top++] = left_first ? node.left : node.right;
         continue;
       }
       for (int i = node.first; i < node.first + node.count; ++i) {
@@ -288,9 +448,56 @@ struct VisibilityEngine::Impl {
           continue;
         }
         ++counters.occluders_tested;
-        if (survives<Signs>(o, p, n, w, sh, horizon, beyond)) out.push_back(&o);
+        if (!survives<Signs>(o, p, n, w, sh, horizon, beyond)) continue;
+        found.emplace_back(rank[i], &o);
+        if (nearest.size() < kNearest) nearest.push_back(&o);
+        if (!try_cover || tries == kCoverTries || std::find(tried, tried + tries, o.source) != tried + tries) continue;
+        tried[tries++] = o.source;
+        const OccluderPatch& patch = patches[o.source];
+        if (patch.testable && covers<Signs>(patch, p, w, sh, beyond)) return true;
       }
     }
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& f : found) out.push_back(f.second);
+    return false;
+  }
+
+  // The trial that finds a piece hidden by several polygons together (the corner of a room, where
+  // the rays to another room's window leave through two walls): the nearest survivors alone,
+  // subtracted in the order met. Where they leave nothing the region is empty whatever the others
+  // (the subtraction is exact in these modes), and their clipping is all the pair costs; where they
+  // leave something, the pair is clipped as before, in the order of subtraction, and the trial
+  // was wasted: tried only when it clips at most half of the survivors. In the exact mode in
+  // intervals first, then, if a sign is uncertain, in rationals, so that both exact modes decide
+  // alike.
+  template <class Signs>
+  bool nearest_hide_all(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
+                        const std::vector<const ConvexPiece*>& nearest) const {
+    // First what costs no construction: the ray through each vertex of w must meet one of them
+    // (in the closed cone over a piece, and reaching its plane as covers() asks). Where one does
+    // not (the own window, whose top corners see sky), the trial is not made. A vertex that the
+    // receiver's planes cut away may decline a trial that would succeed: nothing is lost but time.
+    const auto& wv = w.vertices;
+    const bool beyond = options.occluders_beyond;
+    for (const Vec3& v : wv) {
+      const bool hit = std::any_of(nearest.begin(), nearest.end(), [&](const ConvexPiece* o) {
+        const auto& ov = o->vertices;
+        const int sp = Signs::orient3(ov[0], ov[o->base_b], ov[o->base_c], p);
+        if (sp == 0 || Signs::normal_dot_diff(ov[0], ov[o->base_b], ov[o->base_c], v, beyond ? p : ov[0]) != -sp) return false;
+        for (std::size_t e = 0; e < ov.size(); ++e)
+          if (-sp * Signs::orient3(p, ov[e], ov[(e + 1) % ov.size()], v) < 0) return false;
+        return true;
+      });
+      if (!hit) return false;
+    }
+    if (mode == GeometryMode::exact) {
+      try {
+        CGAL::Protect_FPU_rounding<true> upward;
+        return clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).hides_all(nearest);
+      } catch (const CGAL::Uncertain_conversion_exception&) {
+      }
+    }
+    return clipping::ShadowClipper<LazyExact, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).hides_all(nearest);
   }
 
   template <class Signs, class FT>
@@ -315,44 +522,61 @@ struct VisibilityEngine::Impl {
       ++counters.pairs_not_facing;
       return;
     }
-    std::vector<const ConvexPiece*> blockers;
-    collect<Signs>(p, n, w, sh, options, blockers, counters);
+    std::vector<const ConvexPiece*> blockers, nearest;
+    if (collect<Signs>(p, n, w, sh, options, blockers, nearest, counters) ||
+        (mode != GeometryMode::floating && blockers.size() > 2 * nearest.size() && nearest_hide_all<Signs>(p, n, w, sh, options, nearest))) {
+      ++counters.pairs_covered;
+      return;
+    }
     const bool reference = mode == GeometryMode::rational;
+    const bool front_to_back = order_of_subtraction == SubtractionOrder::front_to_back;
+    if (front_to_back) {
+      std::vector<std::pair<double, const ConvexPiece*>> by_distance;
+      for (const ConvexPiece* o : blockers) by_distance.emplace_back(distance2(occluder_boxes[std::size_t(o - occluders.data())], p), o);
+      std::stable_sort(by_distance.begin(), by_distance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t i = 0; i < blockers.size(); ++i) blockers[i] = by_distance[i].second;
+    }
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
     const bool shortcut = blockers.empty() && !reference && unobstructed_directions<Signs>(p, n, w, sh, options, region);
     if (shortcut) {
       ++counters.pairs_unobstructed;
+      return;
+    }
+    blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
+    counters.occluders_clipped += blockers.size();
+    const auto clip = [&](auto number, SphericalRegion& out) {
+      clipping::ShadowClipper<decltype(number), Signs> clipper(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond, front_to_back);
+      clipper.run(blockers, out, options.edge_sources);
+      counters.occluders_skipped += clipper.skipped();
+    };
+    if constexpr (std::is_same_v<FT, double>) {
+      clip(0.0, region);
     } else {
-      blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
-      counters.occluders_clipped += blockers.size();
-      if constexpr (std::is_same_v<FT, double>) {
-        clipping::ShadowClipper<double, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
+      SphericalRegion certified;
+      bool certain = !reference;
+      if (certain) {
+        try {
+          CGAL::Protect_FPU_rounding<true> upward;
+          clip(Interval(0), certified);
+        } catch (const CGAL::Uncertain_conversion_exception&) {
+          certain = false;
+        }
+      }
+      if (certain) {
+        for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
+        for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
       } else {
-        SphericalRegion certified;
-        bool certain = !reference;
-        if (certain) {
-          try {
-            CGAL::Protect_FPU_rounding<true> upward;
-            clipping::ShadowClipper<Interval, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, certified, options.edge_sources);
-          } catch (const CGAL::Uncertain_conversion_exception&) {
-            certain = false;
-          }
-        }
-        if (certain) {
-          for (auto& loop : certified.loops) region.loops.push_back(std::move(loop));
-          for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
-        } else {
-          ++counters.pairs_rational;
-          clipping::ShadowClipper<FT, Signs>(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond).run(blockers, region, options.edge_sources);
-        }
+        ++counters.pairs_rational;
+        clip(FT(0), region);
       }
     }
   }
 };
 
-VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode) : impl_(std::make_unique<Impl>()) {
+VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order) : impl_(std::make_unique<Impl>()) {
   impl_->mode = mode;
+  impl_->order_of_subtraction = order;
   for (std::size_t s = 0; s < scene.occluders.size(); ++s)
     for (auto& piece : convex_pieces(scene.occluders[s], s)) impl_->occluders.push_back(std::move(piece));
   for (const ConvexPiece& o : impl_->occluders) {
@@ -362,7 +586,11 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode) : impl
   }
   impl_->order.resize(impl_->occluders.size());
   std::iota(impl_->order.begin(), impl_->order.end(), 0);
-  if (!impl_->occluders.empty()) impl_->build(0, int(impl_->occluders.size()));
+  if (!impl_->occluders.empty()) {
+    impl_->build(0, int(impl_->occluders.size()));
+    impl_->rank_slots();
+  }
+  impl_->build_patches(scene.occluders.size());
   for (std::size_t a = 0; a < scene.apertures.size(); ++a) {
     impl_->apertures.push_back(convex_pieces(scene.apertures[a].polygon, a));
     impl_->aperture_pieces += impl_->apertures.back().size();

@@ -18,27 +18,44 @@ enum class GeometryMode {
              // slow reference that the exact mode's certified shortcuts must reproduce
 };
 
+// The order in which the occluder pieces' shadows are subtracted from an aperture piece.
+enum class SubtractionOrder {
+  // The order of the culling hierarchy, as the engine always had: results to the last bit as
+  // before (the partition into loops, and so every kernel's rounding, depends on the order).
+  as_built,
+  // Nearest occluder piece first, and a shadow whose bounding box (in double, with a margin that
+  // covers its rounding) misses a remaining visible piece's is not subtracted from it: the
+  // occluders hidden behind others cost a box test. The region is the same set; its partition
+  // differs, so sums differ in the last digits (bench scenes measures by how much).
+  front_to_back,
+};
+
 // What the visibility routine did and what it left out; summed over threads.
 struct VisibilityCounters {
   std::uint64_t pairs = 0;               // sensor–aperture-piece pairs evaluated
   std::uint64_t pairs_not_facing = 0;    // piece behind the receiver, below its horizon, or edge-on
   std::uint64_t pairs_unobstructed = 0;  // no occluder survived culling: no exact construction at all
+  std::uint64_t pairs_covered = 0;       // one occluder polygon hides the whole piece: decided by
+                                         // exact predicates, nothing clipped (an empty region)
   std::uint64_t pairs_clipped = 0;       // occluders clipped and subtracted
   std::uint64_t pairs_rational = 0;      // of those, pairs where interval arithmetic could not certify
                                          // every decision, so exact rationals were used
   std::uint64_t occluders_box_culled = 0;    // occluder pieces (or BVH subtrees' pieces) culled by boxes
   std::uint64_t occluders_tested = 0;        // occluder pieces that reached the exact predicates
   std::uint64_t occluders_clipped = 0;       // occluder pieces that survived and were clipped
+  std::uint64_t occluders_skipped = 0;       // of those, shadows skipped by boxes (front_to_back)
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     pairs += o.pairs;
     pairs_not_facing += o.pairs_not_facing;
     pairs_unobstructed += o.pairs_unobstructed;
+    pairs_covered += o.pairs_covered;
     pairs_clipped += o.pairs_clipped;
     pairs_rational += o.pairs_rational;
     occluders_box_culled += o.occluders_box_culled;
     occluders_tested += o.occluders_tested;
     occluders_clipped += o.occluders_clipped;
+    occluders_skipped += o.occluders_skipped;
     return *this;
   }
 };
@@ -70,7 +87,7 @@ class VisibilityEngine {
  public:
   // Splits apertures and occluders into convex pieces and builds the culling hierarchy.
   // Throws daylit::Error for polygons that cross themselves.
-  VisibilityEngine(const Scene& scene, GeometryMode mode);
+  VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order = SubtractionOrder::as_built);
   ~VisibilityEngine();
   VisibilityEngine(VisibilityEngine&&) noexcept;
   VisibilityEngine& operator=(VisibilityEngine&&) noexcept;

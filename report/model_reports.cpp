@@ -48,8 +48,9 @@ nlohmann::json counters_json(const VisibilityCounters& c) {
   return {
       {"sensor_aperture_pairs", c.pairs},
       {"pairs_not_facing", c.pairs_not_facing},
-      {"pairs_without_clipping", c.pairs_unobstructed + c.pairs_not_facing},
+      {"pairs_without_clipping", c.pairs_unobstructed + c.pairs_not_facing + c.pairs_covered},
       {"pairs_unobstructed", c.pairs_unobstructed},
+      {"pairs_covered", c.pairs_covered},
       {"pairs_clipped", c.pairs_clipped},
       {"pairs_clipped_in_certified_intervals", c.pairs_clipped - c.pairs_rational},
       {"pairs_needing_exact_rationals", c.pairs_rational},

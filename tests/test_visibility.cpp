@@ -341,3 +341,102 @@ TEST_CASE("a receiver facing straight down sees no sky: its hemisphere meets the
     CHECK(less_tilted < 1e-3 * tilted);
   }
 }
+
+namespace {
+
+// A wall in the plane y = y0, x ∈ [−3, 5], z ∈ [0, 3], with the hole x ∈ [hx0, hx1], z ∈ [hz0, hz1]
+// cut by a seam: triangulated into several pieces, so that only their union hides anything whole.
+Polygon wall_at(double y0, double hx0, double hx1, double hz0, double hz1) {
+  return polygon({{-3, y0, 0}, {5, y0, 0}, {5, y0, 3}, {-3, y0, 3}, {-3, y0, hz0}, {hx0, y0, hz0}, {hx0, y0, hz1}, {hx1, y0, hz1},
+                  {hx1, y0, hz0}, {hx0, y0, hz0}, {-3, y0, hz0}},
+                 "wall");
+}
+
+}  // namespace
+
+TEST_CASE("a polygon that hides the whole aperture is found before any clipping; one with a hole in the view is clipped") {
+  // Sensor p = (1, 3, 0.85) looking at the window (y = 0) through a wall at y = 1: the window's
+  // cone meets the wall in x ∈ [1/3, 5/3], z ∈ [0.95, 1.62]. Its other rooms' windows are this
+  // case (DESIGN.md §2).
+  const Vec3 p{1, 3, 0.85};
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+    Scene hidden;
+    hidden.apertures.push_back({polygon(kWindow, "window"), 1.0});
+    hidden.occluders.push_back(polygon({{0, 0.5, 0}, {2, 0.5, 0}, {2, -0.5, 0}, {0, -0.5, 0}}, "mat"));  // in the cone, below the horizon
+    hidden.occluders.push_back(wall_at(1, 3, 4, 1, 2));  // the hole out of the view
+    const VisibilityEngine engine(hidden, mode);
+    VisibilityCounters counters;
+    CHECK(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+    CHECK(counters.pairs_covered == 1);
+    CHECK(counters.pairs_clipped == 0);
+    CHECK(counters.occluders_clipped == 0);
+    // Beyond the window the wall hides the sky but not a luminaire in the window's plane.
+    Scene behind = hidden;
+    behind.occluders[1] = wall_at(-1, 3, 4, 1, 2);
+    const VisibilityEngine behind_engine(behind, mode);
+    VisibilityCounters c2;
+    CHECK(behind_engine.visible_region(p, {0, 0, 1}, 0, c2).empty());
+    CHECK(c2.pairs_covered == 1);
+    VisibilityOptions luminaire;
+    luminaire.clip_to_horizon = false;
+    luminaire.occluders_beyond = false;
+    VisibilityCounters c3;
+    const double omega = solid_angle(behind_engine.visible_region(p, {0, 0, 1}, 0, c3, luminaire));
+    CHECK(c3.pairs_covered == 0);
+    // The whole window: solid angle of the rectangle, by the test's own quadrature.
+    const double omega_window = double(test::integrate_directions(test::lvec(p), {0, 0, 1}, {2, 0, 0}, {0, 0, 1}, [](const LVec3&) { return 1.0L; }));
+    CHECK(relative_error(omega, omega_window) < 1e-10);
+  }
+  // The hole in the view: nothing hides the whole window, the pair is clipped and what is seen is
+  // the hole's projection onto the window, x ∈ [0.25, 1.75], z ∈ [1.075, 1.825].
+  Scene open;
+  open.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  open.occluders.push_back(wall_at(1, 0.5, 1.5, 1, 1.5));
+  VisibilityCounters counters;
+  const VisibilityEngine engine(open, GeometryMode::exact);
+  CHECK_FALSE(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+  CHECK(counters.pairs_covered == 0);
+  CHECK(counters.pairs_clipped == 1);
+  CHECK(relative_error(sc(open, p, GeometryMode::exact), reference_sc(p, 0.25, 1.75, 1.075, 1.825)) < 1e-10);
+}
+
+TEST_CASE("two walls meeting at a corner that hide the window together are found by the trial of the nearest") {
+  // From p = (−1, 3, 0.85) the rays to the window (y = 0, x ∈ [0, 2]) with x_w ≤ 1.25 leave through
+  // wall A (y = 1, x ≤ 0.5), the others through wall B (x = 0.5, y ≥ 1): neither alone hides the
+  // window. Beyond it, 8 small boxes (40 pieces) in the cone make the clipping of every survivor the
+  // dearer way; the trial clips only the nearest.
+  const Vec3 p{-1, 3, 0.85};
+  const Polygon wall_a = polygon({{-3, 1, 0}, {0.5, 1, 0}, {0.5, 1, 3}, {-3, 1, 3}}, "wall a");
+  const Polygon wall_b = polygon({{0.5, 1, 0}, {0.5, 2.9, 0}, {0.5, 2.9, 3}, {0.5, 1, 3}}, "wall b");
+  Scene scene;
+  scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
+  for (int k = 0; k < 8; ++k) {
+    const double x = 0.7 + 0.4 * k;
+    for (const auto& [lo, hi] : {std::pair<Vec3, Vec3>{{x, -2.2, 1.2}, {x + 0.2, -2, 2.5}}}) {
+      scene.occluders.push_back(polygon({{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z}}));
+      scene.occluders.push_back(polygon({{hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}}));
+      scene.occluders.push_back(polygon({{lo.x, hi.y, lo.z}, {lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}}));
+      scene.occluders.push_back(polygon({{hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z}}));
+      scene.occluders.push_back(polygon({{lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}}));
+    }
+  }
+  Scene open = scene;  // wall A only: the rays through x_w > 1.25 stay open
+  open.occluders.push_back(wall_a);
+  scene.occluders.push_back(wall_a);
+  scene.occluders.push_back(wall_b);
+  for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+    const VisibilityEngine engine(scene, mode);
+    VisibilityCounters counters;
+    CHECK(engine.visible_region(p, {0, 0, 1}, 0, counters).empty());
+    CHECK(counters.pairs_covered == 1);
+    CHECK(counters.pairs_clipped == 0);
+    const VisibilityEngine open_engine(open, mode);
+    VisibilityCounters open_counters;
+    CHECK_FALSE(open_engine.visible_region(p, {0, 0, 1}, 0, open_counters).empty());
+    CHECK(open_counters.pairs_covered == 0);
+    CHECK(open_counters.pairs_clipped == 1);
+    CHECK(open_counters.occluders_clipped > 24);  // the trial ran, and the pair was clipped after it
+  }
+  // What stays open is the same as the all-rational reference gives (checked inside sc()).
+  CHECK(sc(open, p, GeometryMode::exact) > 0);
+}
