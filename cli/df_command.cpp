@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
 #include "report/model_reports.hpp"
@@ -167,6 +168,7 @@ std::function<int()> add_df_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   df->add_option("--apertures", files.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
   df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  add_model_options(*df, files);
   df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
       ->check(CLI::IsMember({"cie-overcast", "uniform"}));
   df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
 #include "report/model_reports.hpp"
@@ -286,6 +287,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
   cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  add_model_options(*cmd, f);
   cmd->add_option("--sky", opt->sky, "uniform, cie-overcast (default) or cie-1 ... cie-15")
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {

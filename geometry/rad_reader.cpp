@@ -22,8 +22,10 @@ std::string read_text_file(const std::string& path) {
 namespace {
 
 // Material types kept by type; their argument counts are checked where they are used.
-const std::set<std::string, std::less<>> kMaterialTypes = {"plastic", "metal", "trans", "glass",
-                                                           "mirror",  "glow",  "light"};
+// BSDF and aBSDF (Honeybee's dynamic aperture states and WINDOW's data) are kept with their
+// strings (thickness, XML file, up vector, function file): scene_materials.cpp decides their role.
+const std::set<std::string, std::less<>> kMaterialTypes = {"plastic", "metal", "trans", "glass", "mirror",
+                                                           "glow",    "light", "illum", "BSDF",  "aBSDF"};
 // Patterns and sources that make up a Radiance sky: skipped with a notice.
 const std::set<std::string, std::less<>> kSkyTypes = {"source", "brightfunc", "colorfunc"};
 
@@ -32,7 +34,7 @@ bool material_arity_ok(const std::string& type, std::size_t n) {
   if (type == "plastic" || type == "metal") return n == 5;
   if (type == "trans") return n == 7;
   if (type == "glass") return n == 3 || n == 4;
-  if (type == "mirror" || type == "light") return n == 3;
+  if (type == "mirror" || type == "light" || type == "illum") return n == 3;
   if (type == "glow") return n == 4;
   return true;
 }
@@ -60,22 +62,6 @@ std::string material_range_problem(const std::string& type, const std::vector<do
       if (i != 4 && outside(r[i], 0, 1)) return describe(kNames[i], r[i], "[0, 1]");
   }
   return "";
-}
-
-// Zero-area polygons are rejected (in a scene they are modelling slips, and they have no side to
-// block light with); so are polygons warped beyond kPlanarityTolerance of their extent. Boundaries
-// that cross themselves are found by the exact decomposition (convex_pieces), which knows seams.
-void check_polygon(const Polygon& poly) {
-  const PolygonShape shape = polygon_shape(poly.vertices);
-  if (shape.zero_area)
-    throw input_error(poly.where, "polygon " + printable(poly.name) +
-                                      " has zero area (collinear or repeated vertices, or lobes that cancel)");
-  if (shape.deviation > kPlanarityTolerance * shape.extent) {
-    std::ostringstream msg;
-    msg << "polygon " << printable(poly.name) << " is not planar: a vertex lies " << shape.deviation
-        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << shape.extent;
-    throw input_error(poly.where, msg.str());
-  }
 }
 
 // A `!command` line: daylit runs no commands. Say which program it is and what to do instead.
@@ -128,6 +114,22 @@ std::string foreign_file_kind(std::string_view text) {
 }
 
 }  // namespace
+
+// Zero-area polygons are rejected (in a scene they are modelling slips, and they have no side to
+// block light with); so are polygons warped beyond kPlanarityTolerance of their extent. Boundaries
+// that cross themselves are found by the exact decomposition (convex_pieces), which knows seams.
+void check_polygon(const Polygon& poly) {
+  const PolygonShape shape = polygon_shape(poly.vertices);
+  if (shape.zero_area)
+    throw input_error(poly.where, "polygon " + printable(poly.name) +
+                                      " has zero area (collinear or repeated vertices, or lobes that cancel)");
+  if (shape.deviation > kPlanarityTolerance * shape.extent) {
+    std::ostringstream msg;
+    msg << "polygon " << printable(poly.name) << " is not planar: a vertex lies " << shape.deviation
+        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << shape.extent;
+    throw input_error(poly.where, msg.str());
+  }
+}
 
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
@@ -236,7 +238,7 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     } else {
       throw input_error(where, "unsupported primitive type " + printable(type) + " (" + printable(id) +
                                    "); daylit reads polygon geometry and the materials plastic, metal, "
-                                   "trans, glass, mirror, glow, light");
+                                   "trans, glass, mirror, glow, light, illum, BSDF, aBSDF");
     }
   }
   if (polygons_with_repeats > 0)

@@ -9,7 +9,7 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   if (!files.context.empty() && files.site.empty())
     throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
   ModelInputs in;
-  in.scene = load_scene(files.scene_files, files.aperture_files);
+  in.scene = load_scene(files.scene_files, files.aperture_files, SceneOptions{files.bsdf_transmittance});
   if (in.scene.apertures.empty())
     throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));

@@ -20,6 +20,7 @@ struct ModelFiles {
   std::vector<std::string> scene_files, aperture_files, grid_files;
   std::string site, context;
   double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
+  std::optional<double> bsdf_transmittance;  // for BSDF apertures (materials/scene_materials.hpp)
 };
 
 struct ModelInputs {
