@@ -167,7 +167,7 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--scene", files.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   df->add_option("--apertures", files.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line); with --model, the model's grids by default")->check(CLI::ExistingFile);
   add_model_options(*df, files);
   df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
       ->check(CLI::IsMember({"cie-overcast", "uniform"}));

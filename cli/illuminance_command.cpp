@@ -286,7 +286,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line); with --model, the model's grids by default")->check(CLI::ExistingFile);
   add_model_options(*cmd, f);
   cmd->add_option("--sky", opt->sky, "uniform, cie-overcast (default) or cie-1 ... cie-15")
       ->check(CLI::Validator(

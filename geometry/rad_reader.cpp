@@ -131,6 +131,14 @@ void check_polygon(const Polygon& poly) {
   }
 }
 
+void check_material(const Material& m) {
+  if (!material_arity_ok(m.type, m.reals.size()))
+    throw input_error(m.where, m.type + " material " + printable(m.name) + " has " + std::to_string(m.reals.size()) +
+                                   " real arguments, which is wrong for its type");
+  if (const std::string problem = material_range_problem(m.type, m.reals); !problem.empty())
+    throw input_error(m.where, m.type + " material " + printable(m.name) + ": " + problem);
+}
+
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
   if (const std::string kind = foreign_file_kind(text); !kind.empty()) throw input_error({name, 1}, "this is " + kind);
@@ -225,12 +233,9 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
       check_polygon(poly);
       content.polygons.push_back({std::move(poly), aperture_file});
     } else if (kMaterialTypes.count(type)) {
-      if (!material_arity_ok(type, reals.size()))
-        throw input_error(where, type + " material " + printable(id) + " has " + std::to_string(reals.size()) +
-                                     " real arguments, which is wrong for its type");
-      if (const std::string problem = material_range_problem(type, reals); !problem.empty())
-        throw input_error(where, type + " material " + printable(id) + ": " + problem);
-      content.materials[id] = Material{id, type, std::move(strings), std::move(reals), where};
+      Material material{id, type, std::move(strings), std::move(reals), where};
+      check_material(material);
+      content.materials[id] = std::move(material);
     } else if (kSkyTypes.count(type)) {
       content.skipped_modifiers.insert(id);
       content.notices.push_back(where.str() + ": skipped " + type + " " + printable(id) +

@@ -53,6 +53,10 @@ inline constexpr double kPlanarityTolerance = 1e-4;
 // kPlanarityTolerance of its extent (the checks every reader applies).
 void check_polygon(const Polygon& poly);
 
+// Throws daylit::Error at `material.where` if a kept material type has the wrong number of reals,
+// or if glass or trans reals are unphysical (they enter the apertures' transmittance).
+void check_material(const Material& material);
+
 // Reads `path` and appends its content. Throws daylit::Error with file:line on bad input.
 void read_rad_file(const std::string& path, bool aperture_file, RadContent& content);
 

@@ -1,5 +1,6 @@
 #include "simulation/model_inputs.hpp"
 
+#include "geometry/honeybee_model.hpp"
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 
@@ -9,10 +10,23 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   if (!files.context.empty() && files.site.empty())
     throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
   ModelInputs in;
-  in.scene = load_scene(files.scene_files, files.aperture_files, SceneOptions{files.bsdf_transmittance});
+  RadContent content;
+  if (!files.model.empty()) {
+    HoneybeeModel model = read_honeybee_model(files.model);
+    content = std::move(model.content);
+    if (files.grid_files.empty()) in.grids = std::move(model.grids);
+    else content.notices.push_back(files.model + ": its sensor grids are left out: --grid was given");
+  }
+  for (const auto& f : files.scene_files) read_rad_file(f, false, content);
+  for (const auto& f : files.aperture_files) read_rad_file(f, true, content);
+  in.scene = assemble_scene(content, SceneOptions{files.bsdf_transmittance});
   if (in.scene.apertures.empty())
-    throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
+    throw Error("no apertures: give sky openings with --apertures, glass polygons in the scene, or a --model with "
+                "apertures");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
+  if (in.grids.empty())
+    throw Error(files.model.empty() ? "no sensor grids: give --grid (or --model with sensor grids)"
+                                    : files.model + ": the model has no sensor grids: give --grid");
   if (!files.site.empty()) {
     in.site = read_site_file(files.site);
     in.scene.notices.push_back("site " + files.site + ": " + in.site->description());
