@@ -16,6 +16,7 @@
 #include "cli/model_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
+#include "report/honeybee_results.hpp"
 #include "report/model_reports.hpp"
 #include "report/reports.hpp"
 #include "report/staged_output.hpp"
@@ -31,7 +32,7 @@ struct DfOptions {
   ModelFiles files;
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
-  std::string out, summary, image;
+  std::string out, summary, image, results;
   int threads = 0;
   bool quiet = false;
   bool gradient = false, refine = false;
@@ -80,9 +81,10 @@ int run_df(const DfOptions& opt) {
   }
 
   StagedOutputs outputs;
-  if (!opt.out.empty()) {
+  if (!opt.out.empty() && opt.out != "-") {
     write_csv(outputs.stage(opt.out), reports);
   }
+  if (!opt.results.empty()) stage_honeybee_results(outputs, opt.results, reports);
   if (!opt.image.empty())
     for (const auto& r : reports) write_falsecolour_image(outputs.stage(image_path_for(opt.image, r.grid->name, reports.size())), r);
 
@@ -134,7 +136,7 @@ int run_df(const DfOptions& opt) {
     if (!f) throw Error(opt.summary + ": cannot write summary");
   }
   outputs.commit();
-  if (opt.out.empty()) write_csv(stdout, reports);
+  if (opt.out.empty() || opt.out == "-") write_csv(stdout, reports);
   if (!opt.quiet)
     for (const auto& r : reports) {
       std::cerr << fmt::format("{}: {} sensors, mean DF {:.3f} %, median {:.3f} %, min {:.3f} %, max {:.3f} % ({:.2f} s)\n",
@@ -171,7 +173,9 @@ std::function<int()> add_df_command(CLI::App& app) {
   add_model_options(*df, files);
   df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
       ->check(CLI::IsMember({"cie-overcast", "uniform"}));
-  df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
+  df->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
+  df->add_option("--results", opt->results,
+                 "Existing folder for results in Honeybee's layout: <grid>.res (one DF % per line) and grids_info.json");
   df->add_option("--summary", opt->summary, "JSON file for per-grid statistics and what was left out");
   df->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
   df->add_option("--geometry", opt->geometry,

@@ -154,7 +154,7 @@ int run_illuminance(IlluminanceOptions opt) {
   }
 
   StagedOutputs outputs;
-  if (!opt.out.empty()) write_lux_csv(outputs.stage(opt.out), grids);
+  if (!opt.out.empty() && opt.out != "-") write_lux_csv(outputs.stage(opt.out), grids);
   if (!opt.image.empty()) {
     for (const auto& g : grids) {
       GridReport r;
@@ -255,7 +255,7 @@ int run_illuminance(IlluminanceOptions opt) {
     if (!f) throw Error(opt.summary + ": cannot write summary");
   }
   outputs.commit();
-  if (opt.out.empty()) write_lux_csv(stdout, grids);
+  if (opt.out.empty() || opt.out == "-") write_lux_csv(stdout, grids);
   if (!opt.quiet) {
     if (sun.source != "none")
       std::cerr << fmt::format("sun: zenith {:.4f}°, azimuth {:.4f}° ({}){}\n", sun.zenith_deg, sun.azimuth_deg,
@@ -336,7 +336,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
                   "Leave out context buildings smaller than this from every aperture (degrees; default 0.1), except those "
                   "in the sun's beam, which may hide part of its disk")
       ->check(CLI::Range(0.0, 179.0));
-  cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
+  cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
   cmd->add_option("--summary", opt->summary, "JSON file for per-grid statistics, the sky, the sun and what was left out");
   cmd->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")

@@ -356,6 +356,7 @@ class HbjsonReader {
 
   void read_room(const json& room, const std::string& path) {
     ++out_.rooms;
+    room_ = label(room, path);
     ModifierSet set;
     const json& set_id = Reader::optional(Reader::optional(Reader::optional(room, "properties"), "radiance"), "modifier_set");
     if (!set_id.is_null()) {
@@ -366,6 +367,7 @@ class HbjsonReader {
     }
     const json& faces = r_.array(r_.member(room, path, "faces"), path + ".faces");
     for (std::size_t i = 0; i < faces.size(); ++i) read_face(faces[i], indexed(path, "faces", i), set);
+    room_.clear();
     for (const char* key : {"outdoor_shades", "indoor_shades"}) {
       const json& shades = r_.array_member(room, path, key);
       for (std::size_t i = 0; i < shades.size(); ++i)
@@ -383,6 +385,10 @@ class HbjsonReader {
     const std::vector<Vec3> boundary = r_.loop(r_.member(geometry, path + ".geometry", "boundary"), path + ".geometry.boundary");
     const json& own_holes = r_.array_member(geometry, path + ".geometry", "holes");
     for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path + ".geometry", "holes", i)));
+    if (type == "Floor" && !room_.empty()) {
+      out_.floors.push_back({room_, {boundary}});
+      out_.floors.back().loops.insert(out_.floors.back().loops.end(), holes.begin(), holes.end());
+    }
     for (const char* key : {"apertures", "doors"}) {
       const json& subs = r_.array_member(face, path, key);
       for (std::size_t i = 0; i < subs.size(); ++i) {
@@ -548,6 +554,7 @@ class HbjsonReader {
   HoneybeeModel out_;
   std::map<std::string, Material> modifiers_;
   std::map<std::string, ModifierSet> sets_;
+  std::string room_;  // the room whose faces are being read
   long air_boundaries_ = 0, dynamic_ = 0, merged_grids_ = 0, with_inner_modifier_ = 0;
 };
 

@@ -30,6 +30,12 @@ namespace daylit {
 
 struct HoneybeeModel {
   RadContent content;
+  // The floors of each room (faces of type Floor; their own holes, not their sub-faces), for grids.
+  struct RoomFloor {
+    std::string room;
+    std::vector<std::vector<Vec3>> loops;
+  };
+  std::vector<RoomFloor> floors;
   std::vector<SensorGrid> grids;  // the model's, in its order
   // What an HBJSON held (a folder leaves them 0: it holds polygons, not rooms).
   long rooms = 0, faces = 0, apertures = 0, doors = 0, shades = 0;
