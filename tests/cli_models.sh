@@ -24,6 +24,10 @@ printf '2 2 0.8 0 0 1\n' > one.pts
 if [ $? -ne 0 ] || [ "$(wc -l < one.csv)" -ne 2 ] || ! grep -q "sensor grids are left out: --grid was given" stderr.txt; then
   echo "FAIL df --model --grid"; failures=$((failures + 1))
 fi
+# A grid whose sensors all face away from every aperture (up, above the roof) is said so.
+printf '2 2 100 0 0 1\n3 2 100 0 0 1\n' > down.pts
+"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --grid down.pts --out down.csv 2> stderr.txt
+if ! grep -q "every sensor of grid 'down' faces away from every aperture" stderr.txt; then echo "FAIL no notice for a grid facing away"; failures=$((failures + 1)); fi
 "$daylit" illuminance --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < lux.csv)" -ne 401 ]; then echo "FAIL illuminance --model"; failures=$((failures + 1)); fi
 
