@@ -22,6 +22,7 @@
 #include "report/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
+#include "simulation/daylight_criteria.hpp"
 #include "simulation/sky_component.hpp"
 
 namespace daylit::cli {
@@ -37,6 +38,7 @@ struct DfOptions {
   bool quiet = false;
   bool gradient = false, refine = false;
   double refine_tolerance = 0.01;  // DF percentage points of a cell's mean
+  double median_diffuse_lux = 0;   // EN 17037's E_v,d,med; 0: no EN 17037 block
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -114,6 +116,8 @@ int run_df(const DfOptions& opt) {
                                 {"share_at_or_above_df_percent", shares},
                                 {"run_time_s", r.run_time_s},
                                 {"left_out", counters_json(r.counters)}});
+    if (opt.median_diffuse_lux > 0)
+      summary["grids"].back()["en17037_df_method"] = en17037_json(en17037_df_method(r.df_percent, opt.median_diffuse_lux));
     if (r.refinement) {
       const GridRefinement& f = *r.refinement;
       summary["grids"].back()["refinement"] = {
@@ -206,6 +210,11 @@ std::function<int()> add_df_command(CLI::App& app) {
                "stderr give the estimated error of the grid's mean DF before and after");
   df->add_option("--refine-tolerance", opt->refine_tolerance,
                  "Estimated error of a cell's mean DF above which --refine splits it (DF percentage points; default 0.01)")
+      ->check(CLI::PositiveNumber);
+  df->add_option("--median-diffuse-lux", opt->median_diffuse_lux,
+                 "The site's median diffuse horizontal illuminance over the daylight hours (lux; EN 17037 Table A.3): "
+                 "the summary then assesses each grid by EN 17037's daylight-factor method (targets 100 E/E_med for its "
+                 "three levels, over 50 % and 95 % of the sensors)")
       ->check(CLI::PositiveNumber);
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_df(*opt); };

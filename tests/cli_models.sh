@@ -43,6 +43,10 @@ if [ "$(python3 -c 'import json; print([(g["identifier"], g["count"]) for g in j
 "$daylit" df --model "$data/model_radiance_grid_views.hbjson" --out ./- --quiet
 if [ "$(wc -l < ./-)" -ne 401 ]; then echo "FAIL --out ./- writes a file named -"; failures=$((failures + 1)); fi
 echo "ok   --results, --out - and --out ./-"
+"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --median-diffuse-lux 10000 --summary en.json --out /dev/null --quiet
+if [ "$(python3 -c 'import json; g = json.load(open("en.json"))["grids"][0]["en17037_df_method"]; print(g["levels"][0]["target_df_percent"], g["levels"][0]["minimum_target_df_percent"], g["level_met"] in ("none", "minimum", "medium", "high"))')" != "3.0 1.0 True" ]; then
+  echo "FAIL --median-diffuse-lux: no EN 17037 block"; failures=$((failures + 1))
+fi
 
 expect_failure() {  # description, pattern, arguments...
   local what="$1" pattern="$2"

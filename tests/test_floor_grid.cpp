@@ -1,10 +1,12 @@
-// daylit grid's geometry (simulation/floor_grid.hpp) against sensor positions computed by hand.
+// daylit grid's geometry (simulation/floor_grid.hpp) against sensor positions computed by hand, and
+// EN 17037's daylight-factor method (simulation/daylight_criteria.hpp) on values chosen by hand.
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 
 #include "geometry/error.hpp"
+#include "simulation/daylight_criteria.hpp"
 #include "simulation/floor_grid.hpp"
 
 using namespace daylit;
@@ -75,4 +77,27 @@ TEST_CASE("floor grid: cells past the far wall keep their centre inside, offset 
   CHECK(floor_grid({FloorOutline{{floor}}}, {1.0, 0.85, 0.6}).empty());  // narrower than twice the offset
   const std::vector<Vec3> tilted{{0, 0, 0}, {2, 0, 0.5}, {2, 2, 0.5}, {0, 2, 0}};
   CHECK_THROWS_AS(floor_grid({FloorOutline{{tilted}}}, {}), Error);
+}
+
+TEST_CASE("EN 17037's daylight-factor method: targets 100 E / E_med over 50 % and 95 % of the sensors") {
+  // E_med = 10,000 lx: minimum level D_T = 3 %, D_TM = 1 %; medium 5 % and 3 %; high 7.5 % and 5 %.
+  // Twenty sensors: one at 0.5 %, nine at 2 %, ten at 4 %: 95 % at or above 1 %, 50 % at or above 3 %.
+  std::vector<double> df(1, 0.5);
+  df.insert(df.end(), 9, 2.0);
+  df.insert(df.end(), 10, 4.0);
+  const En17037Assessment a = en17037_df_method(df, 10000);
+  REQUIRE(a.levels.size() == 3);
+  CHECK(a.levels[0].target_df == 3);
+  CHECK(a.levels[0].minimum_target_df == 1);
+  CHECK(a.levels[0].share_at_target == 0.5);
+  CHECK(a.levels[0].share_at_minimum_target == 0.95);
+  CHECK(a.levels[0].met);
+  CHECK(a.levels[1].target_df == 5);
+  CHECK_FALSE(a.levels[1].met);
+  CHECK(a.levels[2].target_df == 7.5);
+  CHECK(a.level_met == "minimum");
+  // One sensor fewer at 4 % (replaced by 0.5 %): 45 % at the target, 90 % at the minimum: none.
+  df.back() = 0.5;
+  CHECK(en17037_df_method(df, 10000).level_met == "none");
+  CHECK_THROWS_AS(en17037_df_method(df, 0), Error);
 }
