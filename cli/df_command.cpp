@@ -15,13 +15,16 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
+#include "report/honeybee_results.hpp"
 #include "report/model_reports.hpp"
 #include "report/reports.hpp"
 #include "report/staged_output.hpp"
 #include "geometry/error.hpp"
 #include "geometry/visibility.hpp"
+#include "simulation/daylight_criteria.hpp"
 #include "simulation/sky_component.hpp"
 #include "simulation/reflected_components.hpp"
 #include "materials/surface_reflectance.hpp"
@@ -35,7 +38,7 @@ struct DfOptions {
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
   std::string order = "as-built";
-  std::string out, summary, image;
+  std::string out, summary, image, results;
   int threads = 0;
   bool quiet = false;
   bool gradient = false, refine = false;
@@ -48,6 +51,7 @@ struct DfOptions {
   double element_size = 1.0;           // model units
   int max_refinements = 3;
   std::vector<std::string> reflection_options_given;  // names, for the notice with --components sc
+  double median_diffuse_lux = 0;   // EN 17037's E_v,d,med; 0: no EN 17037 block
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -194,9 +198,10 @@ int run_df(const DfOptions& opt) {
   }
 
   StagedOutputs outputs;
-  if (!opt.out.empty()) {
+  if (!opt.out.empty() && opt.out != "-") {
     write_csv(outputs.stage(opt.out), reports);
   }
+  if (!opt.results.empty()) stage_honeybee_results(outputs, opt.results, reports);
   if (!opt.image.empty())
     for (const auto& r : reports) write_falsecolour_image(outputs.stage(image_path_for(opt.image, r.grid->name, reports.size())), r);
 
@@ -244,6 +249,8 @@ int run_df(const DfOptions& opt) {
       }
       summary["grids"].back()["components"] = per;
     }
+    if (opt.median_diffuse_lux > 0)
+      summary["grids"].back()["en17037_df_method"] = en17037_json(en17037_df_method(r.df_percent, opt.median_diffuse_lux));
     if (r.refinement) {
       const GridRefinement& f = *r.refinement;
       summary["grids"].back()["refinement"] = {
@@ -266,7 +273,7 @@ int run_df(const DfOptions& opt) {
     if (!f) throw Error(opt.summary + ": cannot write summary");
   }
   outputs.commit();
-  if (opt.out.empty()) write_csv(stdout, reports);
+  if (opt.out.empty() || opt.out == "-") write_csv(stdout, reports);
   if (!opt.quiet)
     for (const auto& r : reports) {
       std::cerr << fmt::format("{}: {} sensors, mean DF {:.3f} %, median {:.3f} %, min {:.3f} %, max {:.3f} % ({:.2f} s)\n",
@@ -300,10 +307,13 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--scene", files.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   df->add_option("--apertures", files.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  df->add_option("--grid", files.grid_files, "Sensor grids (.pts: x y z dx dy dz per line); with --model, the model's grids by default")->check(CLI::ExistingFile);
+  add_model_options(*df, files);
   df->add_option("--sky", opt->sky, "Sky model: cie-overcast (default) or uniform")
       ->check(CLI::IsMember({"cie-overcast", "uniform"}));
-  df->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
+  df->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
+  df->add_option("--results", opt->results,
+                 "Existing folder for results in Honeybee's layout: <grid>.res (one DF % per line) and grids_info.json");
   df->add_option("--summary", opt->summary, "JSON file for per-grid statistics and what was left out");
   df->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
   df->add_option("--geometry", opt->geometry,
@@ -359,6 +369,11 @@ std::function<int()> add_df_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Rounds of element splitting at most (default 3)")
       ->check(CLI::Range(0, 8));
+  df->add_option("--median-diffuse-lux", opt->median_diffuse_lux,
+                 "The site's median diffuse horizontal illuminance over the daylight hours (lux; EN 17037 Table A.3): "
+                 "the summary then assesses each grid by EN 17037's daylight-factor method (targets 100 E/E_med for its "
+                 "three levels, over 50 % and 95 % of the sensors)")
+      ->check(CLI::PositiveNumber);
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt, ground_option, tolerance_option, size_option, rounds_option] {
     for (const CLI::Option* o : {ground_option, tolerance_option, size_option, rounds_option})

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
 #include "report/model_reports.hpp"
@@ -298,7 +299,7 @@ int run_illuminance(IlluminanceOptions opt) {
   }
 
   StagedOutputs outputs;
-  if (!opt.out.empty()) write_lux_csv(outputs.stage(opt.out), grids);
+  if (!opt.out.empty() && opt.out != "-") write_lux_csv(outputs.stage(opt.out), grids);
   if (!opt.image.empty()) {
     for (const auto& g : grids) {
       GridReport r;
@@ -410,7 +411,7 @@ int run_illuminance(IlluminanceOptions opt) {
     if (!f) throw Error(opt.summary + ": cannot write summary");
   }
   outputs.commit();
-  if (opt.out.empty()) write_lux_csv(stdout, grids);
+  if (opt.out.empty() || opt.out == "-") write_lux_csv(stdout, grids);
   if (!opt.quiet) {
     if (perez && !opt.weather.empty())
       std::cerr << fmt::format("weather: {} line {}, {}; site from {}\n", opt.weather,
@@ -448,7 +449,8 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line); with --model, the model's grids by default")->check(CLI::ExistingFile);
+  add_model_options(*cmd, f);
   cmd->add_option("--sky", opt->sky, "uniform, cie-overcast (default), cie-1 ... cie-15, or perez (the Perez all-weather sky)")
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {
@@ -518,7 +520,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
                   "Leave out context buildings smaller than this from every aperture (degrees; default 0.1), except those "
                   "in the sun's beam, which may hide part of its disk")
       ->check(CLI::Range(0.0, 179.0));
-  cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default: standard output)");
+  cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
   cmd->add_option("--summary", opt->summary, "JSON file for per-grid statistics, the sky, the sun and what was left out");
   cmd->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")

@@ -22,8 +22,10 @@ std::string read_text_file(const std::string& path) {
 namespace {
 
 // Material types kept by type; their argument counts are checked where they are used.
-const std::set<std::string, std::less<>> kMaterialTypes = {"plastic", "metal", "trans", "glass",
-                                                           "mirror",  "glow",  "light"};
+// BSDF and aBSDF (Honeybee's dynamic aperture states and WINDOW's data) are kept with their
+// strings (thickness, XML file, up vector, function file): scene_materials.cpp decides their role.
+const std::set<std::string, std::less<>> kMaterialTypes = {"plastic", "metal", "trans", "glass", "mirror",
+                                                           "glow",    "light", "illum", "BSDF",  "aBSDF"};
 // Patterns and sources that make up a Radiance sky: skipped with a notice.
 const std::set<std::string, std::less<>> kSkyTypes = {"source", "brightfunc", "colorfunc"};
 
@@ -32,7 +34,7 @@ bool material_arity_ok(const std::string& type, std::size_t n) {
   if (type == "plastic" || type == "metal") return n == 5;
   if (type == "trans") return n == 7;
   if (type == "glass") return n == 3 || n == 4;
-  if (type == "mirror" || type == "light") return n == 3;
+  if (type == "mirror" || type == "light" || type == "illum") return n == 3;
   if (type == "glow") return n == 4;
   return true;
 }
@@ -60,22 +62,6 @@ std::string material_range_problem(const std::string& type, const std::vector<do
       if (i != 4 && outside(r[i], 0, 1)) return describe(kNames[i], r[i], "[0, 1]");
   }
   return "";
-}
-
-// Zero-area polygons are rejected (in a scene they are modelling slips, and they have no side to
-// block light with); so are polygons warped beyond kPlanarityTolerance of their extent. Boundaries
-// that cross themselves are found by the exact decomposition (convex_pieces), which knows seams.
-void check_polygon(const Polygon& poly) {
-  const PolygonShape shape = polygon_shape(poly.vertices);
-  if (shape.zero_area)
-    throw input_error(poly.where, "polygon " + printable(poly.name) +
-                                      " has zero area (collinear or repeated vertices, or lobes that cancel)");
-  if (shape.deviation > kPlanarityTolerance * shape.extent) {
-    std::ostringstream msg;
-    msg << "polygon " << printable(poly.name) << " is not planar: a vertex lies " << shape.deviation
-        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << shape.extent;
-    throw input_error(poly.where, msg.str());
-  }
 }
 
 // A `!command` line: daylit runs no commands. Say which program it is and what to do instead.
@@ -128,6 +114,30 @@ std::string foreign_file_kind(std::string_view text) {
 }
 
 }  // namespace
+
+// Zero-area polygons are rejected (in a scene they are modelling slips, and they have no side to
+// block light with); so are polygons warped beyond kPlanarityTolerance of their extent. Boundaries
+// that cross themselves are found by the exact decomposition (convex_pieces), which knows seams.
+void check_polygon(const Polygon& poly) {
+  const PolygonShape shape = polygon_shape(poly.vertices);
+  if (shape.zero_area)
+    throw input_error(poly.where, "polygon " + printable(poly.name) +
+                                      " has zero area (collinear or repeated vertices, or lobes that cancel)");
+  if (shape.deviation > kPlanarityTolerance * shape.extent) {
+    std::ostringstream msg;
+    msg << "polygon " << printable(poly.name) << " is not planar: a vertex lies " << shape.deviation
+        << " from its mean plane, more than " << kPlanarityTolerance << " of its extent " << shape.extent;
+    throw input_error(poly.where, msg.str());
+  }
+}
+
+void check_material(const Material& m) {
+  if (!material_arity_ok(m.type, m.reals.size()))
+    throw input_error(m.where, m.type + " material " + printable(m.name) + " has " + std::to_string(m.reals.size()) +
+                                   " real arguments, which is wrong for its type");
+  if (const std::string problem = material_range_problem(m.type, m.reals); !problem.empty())
+    throw input_error(m.where, m.type + " material " + printable(m.name) + ": " + problem);
+}
 
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
@@ -223,12 +233,9 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
       check_polygon(poly);
       content.polygons.push_back({std::move(poly), aperture_file});
     } else if (kMaterialTypes.count(type)) {
-      if (!material_arity_ok(type, reals.size()))
-        throw input_error(where, type + " material " + printable(id) + " has " + std::to_string(reals.size()) +
-                                     " real arguments, which is wrong for its type");
-      if (const std::string problem = material_range_problem(type, reals); !problem.empty())
-        throw input_error(where, type + " material " + printable(id) + ": " + problem);
-      content.materials[id] = Material{id, type, std::move(strings), std::move(reals), where};
+      Material material{id, type, std::move(strings), std::move(reals), where};
+      check_material(material);
+      content.materials[id] = std::move(material);
     } else if (kSkyTypes.count(type)) {
       content.skipped_modifiers.insert(id);
       content.notices.push_back(where.str() + ": skipped " + type + " " + printable(id) +
@@ -236,7 +243,7 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
     } else {
       throw input_error(where, "unsupported primitive type " + printable(type) + " (" + printable(id) +
                                    "); daylit reads polygon geometry and the materials plastic, metal, "
-                                   "trans, glass, mirror, glow, light");
+                                   "trans, glass, mirror, glow, light, illum, BSDF, aBSDF");
     }
   }
   if (polygons_with_repeats > 0)

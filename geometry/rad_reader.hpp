@@ -4,7 +4,7 @@
 // A primitive is "modifier type identifier", then three argument lists, each preceded by its
 // count: strings, integers, reals. '#' starts a comment that runs to the end of the line.
 // Geometry: `polygon` only. Materials are kept by type (plastic, metal, trans, glass, mirror,
-// glow, light; `alias` for renaming); `void` is the null modifier. Sky and light-source
+// glow, light, illum, BSDF, aBSDF; `alias` for renaming); `void` is the null modifier. Sky and light-source
 // primitives (`source`, and the `brightfunc`/`colorfunc` patterns a sky is made of) are skipped
 // with a notice, since the sky comes from the command line. `!command` lines and every other
 // primitive are an error naming the file and line.
@@ -34,6 +34,9 @@ struct RadContent {
   struct Entry {
     Polygon polygon;
     bool from_aperture_file = false;
+    // Known to separate two rooms (HBJSON: an aperture on a Surface boundary condition): glass
+    // here lets no sky in directly. A .rad file cannot tell, so its polygons leave it false.
+    bool interior = false;
   };
   std::vector<Entry> polygons;
   std::vector<std::string> notices;
@@ -45,6 +48,14 @@ struct RadContent {
 // plane, relative to the polygon's extent. Beyond it a polygon is rejected (CAD exports in single
 // precision sit near 1e-7; a visibly warped quad is well above 1e-4).
 inline constexpr double kPlanarityTolerance = 1e-4;
+
+// Throws daylit::Error at `poly.where` if the polygon has zero area or is warped beyond
+// kPlanarityTolerance of its extent (the checks every reader applies).
+void check_polygon(const Polygon& poly);
+
+// Throws daylit::Error at `material.where` if a kept material type has the wrong number of reals,
+// or if glass or trans reals are unphysical (they enter the apertures' transmittance).
+void check_material(const Material& material);
 
 // Reads `path` and appends its content. Throws daylit::Error with file:line on bad input.
 void read_rad_file(const std::string& path, bool aperture_file, RadContent& content);

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "geometry/text_scanner.hpp"
+
 #include "materials/glass_transmittance.hpp"
 #include "materials/radiance_luminance.hpp"
 
@@ -22,7 +24,24 @@ GlassOptics glass_optics(const Material& glass) {
   return {{r[0], r[1], r[2]}, r.size() > 3 ? r[3] : 1.52};
 }
 
-Scene assemble_scene(const RadContent& content) {
+namespace {
+
+// Polygons given one role for one reason: counted, reported once with the first of them.
+struct Tally {
+  long count = 0;
+  const Polygon* first = nullptr;
+  void add(const Polygon& p) {
+    if (count++ == 0) first = &p;
+  }
+  std::string notice(const std::string& what, const std::string& why) const {
+    return first->where.str() + ": " + std::to_string(count) + " " + what + (count > 1 ? "s" : "") + " (" +
+           printable(first->name) + " first) " + why;
+  }
+};
+
+}  // namespace
+
+Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
   Scene scene;
   scene.notices = content.notices;
   scene.materials = content.materials;
@@ -33,12 +52,18 @@ Scene assemble_scene(const RadContent& content) {
     described.push_back(m.name);
     scene.notices.push_back(text);
   };
+  Tally void_in_scene, opaque_in_apertures, sources, interior_glass;
   for (const auto& entry : content.polygons) {
     const Polygon& poly = entry.polygon;
     const auto it = content.materials.find(poly.material);
     const Material* material = it == content.materials.end() ? nullptr : &it->second;
     const std::string type = material ? material->type : "void";
-    if (type == "glass") {
+    if (type == "light" || type == "glow" || type == "illum") {
+      sources.add(poly);
+    } else if (type == "glass" && entry.interior) {
+      interior_glass.add(poly);
+      scene.occluders.push_back(poly);
+    } else if (type == "glass") {
       const GlassOptics optics = glass_optics(*material);
       const double t = glass_transmittance(optics, 1.0);
       const TransmittancePolynomial fit = fit_glass_transmittance(optics);
@@ -49,6 +74,23 @@ Scene assemble_scene(const RadContent& content) {
                     t, fit.coefficients.size() - 1, fit.max_error);
       describe_once(*material, "glass '" + material->name + text);
       scene.apertures.push_back({poly, t, fit.coefficients, fit.max_error});
+    } else if (type == "BSDF" || type == "aBSDF") {
+      const std::string data = material->strings.size() > 1 ? " (data " + printable(material->strings[1]) + ")" : "";
+      if (!entry.from_aperture_file) {
+        describe_once(*material, material->where.str() + ": " + type + " " + printable(material->name) + data +
+                                     " in a scene file is an opaque occluder: the light it transmits is left out");
+        scene.occluders.push_back(poly);
+      } else if (!options.bsdf_transmittance) {
+        throw input_error(poly.where, "aperture " + printable(poly.name) + " has the " + type + " material " +
+                                          printable(material->name) + data +
+                                          ", whose angular data daylit does not read: give the uniform visible "
+                                          "transmittance to use for it with --bsdf-transmittance (0 to 1)");
+      } else {
+        describe_once(*material, type + " " + printable(material->name) + data + ": the stated uniform transmittance " +
+                                     format_fraction(*options.bsdf_transmittance) + " (--bsdf-transmittance), not its "
+                                     "angular data");
+        scene.apertures.push_back({poly, *options.bsdf_transmittance});
+      }
     } else if (entry.from_aperture_file) {
       if (type == "void") {
         scene.apertures.push_back({poly, 1.0});
@@ -59,21 +101,44 @@ Scene assemble_scene(const RadContent& content) {
                                      ", its diffuse part treated as clear");
         scene.apertures.push_back({poly, t});
       } else {
-        throw input_error(poly.where, "aperture '" + poly.name + "' has material '" + poly.material + "' of type " +
-                                          type + "; apertures must be void, glass or trans");
+        opaque_in_apertures.add(poly);
+        scene.occluders.push_back(poly);
       }
+    } else if (type == "void") {
+      void_in_scene.add(poly);
     } else {
+      if (type == "trans")
+        describe_once(*material, material->where.str() + ": trans " + printable(material->name) +
+                                     " in a scene file is an opaque occluder: the light it transmits is left out (give "
+                                     "its polygons with --apertures to make them openings)");
       scene.occluders.push_back(poly);
     }
   }
+  if (void_in_scene.count)
+    scene.notices.push_back(void_in_scene.notice("void polygon", "in scene files left out: in Radiance a surface "
+                                                                 "modified by void does not exist"));
+  if (opaque_in_apertures.count)
+    scene.notices.push_back(opaque_in_apertures.notice(
+        "polygon", "of opaque materials in aperture files taken as occluders, not openings (Honeybee writes doors "
+                   "there); openings are void, glass, trans or BSDF"));
+  if (sources.count)
+    scene.notices.push_back(sources.notice("light, glow or illum polygon",
+                                           "left out: light sources (or Radiance's secondary sources standing in for "
+                                           "windows) are neither sky openings nor occluders here; the sky comes from "
+                                           "--sky, openings are void, glass or trans polygons in --apertures"));
+  if (interior_glass.count)
+    scene.notices.push_back(interior_glass.notice(
+        "glass polygon", "between two rooms (interior windows) taken as opaque occluders: the sky seen through them "
+                         "and a neighbouring room's window is left out (transmitting occluders are not computed yet)"));
   return scene;
 }
 
-Scene load_scene(const std::vector<std::string>& scene_files, const std::vector<std::string>& aperture_files) {
+Scene load_scene(const std::vector<std::string>& scene_files, const std::vector<std::string>& aperture_files,
+                 const SceneOptions& options) {
   RadContent content;
   for (const auto& f : scene_files) read_rad_file(f, false, content);
   for (const auto& f : aperture_files) read_rad_file(f, true, content);
-  return assemble_scene(content);
+  return assemble_scene(content, options);
 }
 
 }  // namespace daylit

@@ -60,4 +60,25 @@ nlohmann::json counters_json(const VisibilityCounters& c) {
   };
 }
 
+
+nlohmann::json en17037_json(const En17037Assessment& a) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const auto& l : a.levels)
+    levels.push_back({{"level", l.name},
+                      {"target_lux", l.target_lux},
+                      {"minimum_target_lux", l.minimum_target_lux},
+                      {"target_df_percent", l.target_df},
+                      {"minimum_target_df_percent", l.minimum_target_df},
+                      {"share_at_target", l.share_at_target},
+                      {"share_at_minimum_target", l.share_at_minimum_target},
+                      {"met", l.met}});
+  return {{"source",
+           "EN 17037:2018 Table A.1 (openings in vertical and inclined surfaces): target over 50 % and minimum target "
+           "over 95 % of the reference plane; daylight-factor targets 100 E / E_v,d,med (A.3); shares of sensors "
+           "(equal cells); the sky component only unless reflections are computed"},
+          {"median_diffuse_lux", a.median_diffuse_lux},
+          {"levels", levels},
+          {"level_met", a.level_met}};
+}
+
 }  // namespace daylit::cli

@@ -9,6 +9,7 @@
 #include "geometry/scene.hpp"
 #include "geometry/visibility.hpp"
 #include "sky/context_buildings.hpp"
+#include "simulation/daylight_criteria.hpp"
 #include "sky/site.hpp"
 
 namespace daylit::cli {
@@ -17,5 +18,7 @@ nlohmann::json site_json(const Site& site, const std::string& path);
 nlohmann::json context_json(const ContextPlacement& context, const std::string& path);
 nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine);
 nlohmann::json counters_json(const VisibilityCounters& c);
+// The summary block of EN 17037's daylight-factor method (simulation/daylight_criteria.hpp).
+nlohmann::json en17037_json(const En17037Assessment& a);
 
 }  // namespace daylit::cli

@@ -1,18 +1,52 @@
 #include "simulation/model_inputs.hpp"
 
+#include "geometry/honeybee_model.hpp"
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 
 namespace daylit {
 
+namespace {
+
+// True when every aperture lies wholly behind (or in) the plane of every sensor: no sky reaches
+// the grid directly. Stops at the first sensor that faces an aperture, so a usual grid costs one
+// sensor's pass over the apertures' vertices.
+bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
+  for (const Sensor& s : grid.sensors)
+    for (const Aperture& a : scene.apertures)
+      for (const Vec3& v : a.polygon.vertices)
+        if (dot(v - s.position, s.normal) > 0) return false;
+  return true;
+}
+
+}  // namespace
+
 ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optional<SunBeam>& sun) {
   if (!files.context.empty() && files.site.empty())
     throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
   ModelInputs in;
-  in.scene = load_scene(files.scene_files, files.aperture_files);
+  RadContent content;
+  if (!files.model.empty()) {
+    HoneybeeModel model = read_honeybee_model(files.model);
+    content = std::move(model.content);
+    if (files.grid_files.empty()) in.grids = std::move(model.grids);
+    else if (!model.grids.empty()) content.notices.push_back(files.model + ": its sensor grids are left out: --grid was given");
+  }
+  for (const auto& f : files.scene_files) read_rad_file(f, false, content);
+  for (const auto& f : files.aperture_files) read_rad_file(f, true, content);
+  in.scene = assemble_scene(content, SceneOptions{files.bsdf_transmittance});
   if (in.scene.apertures.empty())
-    throw Error("no apertures: give sky openings with --apertures, or glass polygons in the scene");
+    throw Error("no apertures: give sky openings with --apertures, glass polygons in the scene, or a --model with "
+                "apertures");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
+  if (in.grids.empty())
+    throw Error(files.model.empty() ? "no sensor grids: give --grid (or --model with sensor grids)"
+                                    : files.model + ": the model has no sensor grids: give --grid");
+  for (const auto& grid : in.grids)
+    if (faces_no_aperture(grid, in.scene))
+      in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "
+                                 "(each aperture lies behind each sensor's plane): its daylight factors are 0. A grid on a "
+                                 "facade facing out, or reversed directions?");
   if (!files.site.empty()) {
     in.site = read_site_file(files.site);
     in.scene.notices.push_back("site " + files.site + ": " + in.site->description());

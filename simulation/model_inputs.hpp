@@ -18,8 +18,12 @@ namespace daylit {
 
 struct ModelFiles {
   std::vector<std::string> scene_files, aperture_files, grid_files;
+  // An HBJSON file or a Honeybee Radiance folder (geometry/honeybee_model.hpp): its scene, its
+  // apertures and, unless grid_files are given, its sensor grids. The .rad files are added to it.
+  std::string model;
   std::string site, context;
   double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
+  std::optional<double> bsdf_transmittance;  // for BSDF apertures (materials/scene_materials.hpp)
 };
 
 struct ModelInputs {

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "geometry/error.hpp"
-#include "sky/json_input.hpp"
+#include "geometry/json_input.hpp"
 
 namespace daylit {
 

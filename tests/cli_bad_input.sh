@@ -80,8 +80,8 @@ printf 'void polygon warp 0 0 12 0 0 1 2 0 1 2 0.01 2 0 0 2\n' > warp.rad
 expect_failure "non-planar polygon (beyond 1e-4 of its extent)" "warp.rad:1:.*not planar" --apertures warp.rad --grid grid.pts --out out.csv
 printf 'void polygon line 0 0 9 0 0 1 1 0 1 3 0 1\n' > line.rad
 expect_failure "zero-area polygon" "line.rad:1:.*zero area" --scene line.rad --apertures window.rad --grid grid.pts --out out.csv
-printf 'void polygon star 0 0 15 0 0 0 2 0 3 4 0 0 0 0 2 4 0 2\n' > star.rad
-expect_failure "self-intersecting occluder" "star.rad:1:" --scene star.rad --apertures window.rad --grid grid.pts --out out.csv
+printf 'void plastic black 0 0 5 0 0 0 0 0\nblack polygon star 0 0 15 0 0 0 2 0 3 4 0 0 0 0 2 4 0 2\n' > star.rad
+expect_failure "self-intersecting occluder" "star.rad:2:" --scene star.rad --apertures window.rad --grid grid.pts --out out.csv
 
 # And a good run writes all three.
 "$daylit" df --apertures window.rad --grid grid.pts --out out.csv --summary summary.json --image plan.png --quiet
@@ -99,7 +99,7 @@ if ! grep -q "notice: repeats.rad:1: dropped repeated consecutive vertices" stde
 fi
 "$daylit" df --apertures window.rad --grid grid.pts --out plain.csv --quiet
 if [ "$(cut -d, -f2- repeats.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL repeated vertices change the result"; failures=$((failures + 1)); fi
-printf 'void polygon table 0 0 12 0 0.5 0.85  2 0.5 0.85  2 3 0.85  0 3 0.85\n' > table.rad
+printf 'void plastic black 0 0 5 0 0 0 0 0\nblack polygon table 0 0 12 0 0.5 0.85  2 0.5 0.85  2 3 0.85  0 3 0.85\n' > table.rad
 "$daylit" df --scene table.rad --apertures window.rad --grid grid.pts --out table.csv --quiet
 if [ "$(cut -d, -f2- table.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL sensor on a table top"; failures=$((failures + 1)); fi
 echo "ok   repeated vertices and sensors on occluders"

@@ -71,10 +71,61 @@ TEST_CASE("bad scene input is an error naming file and line") {
   CHECK_THROWS_WITH(read_rad_file("/nonexistent/scene.rad", false, sink), Contains("/nonexistent/scene.rad") && Contains("cannot open"));
 }
 
-TEST_CASE("aperture files accept void, glass and trans only") {
-  const std::string plastic = "void plastic p 0 0 5 .5 .5 .5 0 0\np polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n";
-  CHECK_THROWS_WITH(assemble_scene(read(plastic, true)), Contains("scene.rad:2") && Contains("apertures must be"));
-  CHECK(assemble_scene(read("void polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n", true)).apertures.at(0).transmittance == 1);
+TEST_CASE("opaque materials in aperture files are occluders, with one notice") {
+  // Honeybee writes doors into the aperture folder: they block, as in Radiance, and the run goes on.
+  const std::string text = "void plastic door_mat 0 0 5 .5 .5 .5 0 0\ndoor_mat polygon door 0 0 9 0 0 0 1 0 0 1 1 0\n"
+                           "door_mat polygon door2 0 0 9 0 0 1 1 0 1 1 1 1\nvoid polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n";
+  const Scene scene = assemble_scene(read(text, true));
+  CHECK(scene.occluders.size() == 2);
+  REQUIRE(scene.apertures.size() == 1);
+  CHECK(scene.apertures[0].transmittance == 1);  // void stays an opening in aperture files
+  REQUIRE(scene.notices.size() == 1);
+  CHECK_THAT(scene.notices[0], Contains("scene.rad:2") && Contains("2 polygons") && Contains("'door' first") &&
+                                   Contains("occluders"));
+}
+
+TEST_CASE("void polygons in scene files are nothing; light, glow and illum polygons are left out") {
+  const std::string text =
+      "void plastic black 0 0 5 0 0 0 0 0\nvoid light lamp 0 0 3 10 10 10\nvoid glow window_glow 0 0 4 1 1 1 0\n"
+      "void illum ill 0 0 3 1 1 1\n"
+      "void polygon ghost 0 0 9 0 0 2 1 0 2 1 1 2\n"           // line 5
+      "lamp polygon l 0 0 9 0 0 3 1 0 3 1 1 3\n"               // line 6
+      "window_glow polygon g 0 0 9 0 0 4 1 0 4 1 1 4\n"
+      "ill polygon i 0 0 9 0 0 5 1 0 5 1 1 5\n"
+      "black polygon wall 0 0 9 0 0 6 1 0 6 1 1 6\n";
+  const Scene scene = assemble_scene(read(text));
+  REQUIRE(scene.occluders.size() == 1);
+  CHECK(scene.occluders[0].name == "wall");
+  CHECK(scene.apertures.empty());
+  REQUIRE(scene.notices.size() == 2);
+  CHECK_THAT(scene.notices[0], Contains("scene.rad:5") && Contains("1 void polygon ") && Contains("does not exist"));
+  CHECK_THAT(scene.notices[1], Contains("scene.rad:6") && Contains("3 light, glow or illum polygons"));
+}
+
+TEST_CASE("BSDF apertures take a stated uniform transmittance, or are an error saying how to give it") {
+  const std::string text =
+      "void BSDF shade_state 6 0.0 bsdf/shade.xml 0 0 1 . 0 0\nshade_state polygon w 0 0 9 0 0 0 1 0 0 1 1 0\n";
+  CHECK_THROWS_WITH(assemble_scene(read(text, true)),
+                    Contains("scene.rad:2") && Contains("bsdf/shade.xml") && Contains("--bsdf-transmittance"));
+  const Scene scene = assemble_scene(read(text, true), SceneOptions{0.25});
+  REQUIRE(scene.apertures.size() == 1);
+  CHECK(scene.apertures[0].transmittance == 0.25);
+  CHECK(scene.apertures[0].angular_transmittance.empty());
+  // In a scene file it blocks, said so.
+  const Scene in_scene = assemble_scene(read(text, false));
+  CHECK(in_scene.occluders.size() == 1);
+  CHECK_THAT(in_scene.notices.at(0), Contains("left out"));
+}
+
+TEST_CASE("glass known to lie between two rooms is an occluder, said so; other glass is an aperture") {
+  RadContent content = read("void glass g 0 0 3 .9 .9 .9\ng polygon a 0 0 9 0 0 0 1 0 0 1 1 0\n"
+                            "g polygon b 0 0 9 0 0 1 1 0 1 1 1 1\n");
+  content.polygons[1].interior = true;
+  const Scene scene = assemble_scene(content);
+  CHECK(scene.apertures.size() == 1);
+  REQUIRE(scene.occluders.size() == 1);
+  CHECK(scene.occluders[0].name == "b");
+  CHECK_THAT(scene.notices.back(), Contains("scene.rad:3") && Contains("between two rooms") && Contains("left out"));
 }
 
 TEST_CASE("sensor grids are read, and bad grids are errors naming file and line") {

@@ -1,6 +1,7 @@
 #pragma once
 // JSON input files (site descriptions, GeoJSON) read with nlohmann-json, with errors that name the
-// file, and the line for syntax errors. Internal to sky/: the public headers stay free of nlohmann.
+// file, and the line for syntax errors. Used by the readers in geometry/ and sky/; the public headers
+// of both stay free of nlohmann.
 
 #include <string>
 

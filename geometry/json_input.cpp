@@ -1,4 +1,4 @@
-#include "sky/json_input.hpp"
+#include "geometry/json_input.hpp"
 
 #include <algorithm>
 #include <fstream>
