@@ -58,7 +58,7 @@ edges=$out/kernels_cost_per_edge.csv
 # N is far larger), the cubature reaches its tolerance; scaling rows and exponents for every
 # dimension and mode.
 start=$SECONDS
-"$daylit" bench scenes --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench scenes: exit status $?"
+"$daylit" bench scenes --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench scenes: exit status $?"
 echo "bench scenes --quick: $((SECONDS - start)) s"
 for f in scenes_error_vs_time.csv scenes_error_vs_time.png scenes_scaling.csv scenes_scaling.png scenes_scaling_fit.csv scenes_pairs.csv; do
   [ -s "$out/$f" ] || fail "$f missing or empty"
@@ -122,7 +122,7 @@ report=$(awk -F, 'NR > 1 && !($5 <= $8) { print "exact off by " $5 " (tolerance 
 # `daylit bench skies --quick`: both paths on two skies, with finite errors; the cubature at its
 # tighter tolerance (1e-8) within 1e-6 of the 1e-13 reference.
 start=$SECONDS
-"$daylit" bench skies --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench skies: exit status $?"
+"$daylit" bench skies --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench skies: exit status $?"
 echo "bench skies --quick: $((SECONDS - start)) s"
 skies=$out/skies_error_vs_time.csv
 [ -s "$out/skies_error_vs_time.png" ] || fail "no skies plot"
@@ -169,7 +169,7 @@ report=$(awk -F, 'NR > 1 {
 # (seeded, so deterministic); in the side-lit room one bounce misses most of the IRC (truncation
 # error over 3 times that of B = 8); the references per sensor add up (DF = SC + ERC + IRC).
 start=$SECONDS
-"$daylit" bench reflections --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench reflections: exit status $?"
+"$daylit" bench reflections --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench reflections: exit status $?"
 echo "bench reflections --quick: $((SECONDS - start)) s"
 for f in reflections_error_vs_time.csv reflections_error_vs_time.png reflections_reference.csv reflections_reference_bounces.csv; do
   [ -s "$out/$f" ] || fail "$f missing or empty"
@@ -211,7 +211,7 @@ report=$(awk -F, 'NR > 1 {
 # `daylit bench pairs --quick`: a row per case and mode; the rational reference computes in rationals
 # (every pair but those decided before clipping), and nothing else needs them on these samples.
 start=$SECONDS
-"$daylit" bench pairs --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench pairs: exit status $?"
+"$daylit" bench pairs --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench pairs: exit status $?"
 echo "bench pairs --quick: $((SECONDS - start)) s"
 [ "$(head -n 1 "$out/pairs.csv")" = "case,mode,pairs,us_per_pair,share_clipped,share_rational" ] || fail "pairs.csv header"
 report=$(awk -F, 'NR > 1 { rows++; if (!($4 > 0)) print "no time: " $0
@@ -221,7 +221,7 @@ report=$(awk -F, 'NR > 1 { rows++; if (!($4 > 0)) print "no time: " $0
 [ -z "$report" ] || fail "bench pairs: $report"
 
 # `daylit bench gradient --quick`: six rows, each with two positive times.
-"$daylit" bench gradient --quick --quiet --samples "$(dirname "$0")/../samples" --out "$out" || fail "bench gradient: exit status $?"
+"$daylit" bench gradient --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench gradient: exit status $?"
 report=$(awk -F, 'NR > 1 { rows++; if (!($(NF-2) > 0 && $(NF-1) > 0)) print "no time: " $0 } END { if (rows != 6) print rows " rows (expected 6)" }' "$out/gradient.csv")
 [ -z "$report" ] || fail "bench gradient: $report"
 
