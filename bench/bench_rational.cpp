@@ -10,7 +10,7 @@
 //   reflection of a linearly varying luminaire) by the exact O(n²) path and the semi-analytic one
 //   (Gauss–Legendre of T3 with 4 ... 128 nodes) for n = 1 ... 1000 on a 4-edge and a 16-edge
 //   luminaire: time per evaluation, ns per edge, error against the semi-analytic path with 512
-//   nodes (checked against quadrature of the surface integral in tests/test_rational_moments.cpp),
+//   nodes (checked against quadrature of the surface integral in tests/illumination/test_rational_moments.cpp),
 //   each path's own error estimate and the precision it settled in; with adaptive cubature over
 //   the sphere (spherical_quadrature.hpp) at 1e-4 ... 1e-10 for n ≤ 50 as the 2-D baseline.
 // rational_luminaire_degree.csv: polynomial exitance of degree 0 ... 24 on stress geometries: time,
@@ -142,7 +142,7 @@ struct MomentRow {
 };
 
 // A luminaire polygon with `edges` edges on the plane z = 1.3 (tilted slightly), seen from a
-// receiver below it; axes as in tests/test_rational_moments.cpp.
+// receiver below it; axes as in tests/illumination/test_rational_moments.cpp.
 SphericalRegion luminaire(int edges) {
   std::vector<Vec3> poly;
   for (int i = 0; i < edges; ++i) {

@@ -1,7 +1,7 @@
 #pragma once
 // Scenes for the reflected components with exact answers, and the 4 × 5 × 3 m side-lit room: what
 // `daylit bench reflections` measures the path tracer (and, once it lands, the radiosity) on, and
-// what tests/test_path_tracer.cpp holds the path tracer to.
+// what tests/bench/test_path_tracer.cpp holds the path tracer to.
 //
 // The exact values use Howell's configuration factor from a point to a parallel rectangle (DESIGN.md
 // §9, checked there against Lambert's formula to 1e-16), integrated where needed by composite

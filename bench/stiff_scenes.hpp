@@ -1,7 +1,7 @@
 #pragma once
 // Stiff and extreme scenes (DESIGN.md §5 at the scene level) and an independent reference for
 // each: what `daylit bench stiff` measures exact and float geometry against, and what
-// tests/test_stiff_scenes.cpp holds the exact path to.
+// tests/geometry/test_stiff_scenes.cpp holds the exact path to.
 //
 // Each case is one sensor in a small scene, with the part of the aperture that the sensor sees
 // worked out by hand (a window minus a shadow strip, the window ∩ the projection of a reveal's
@@ -482,7 +482,7 @@ inline std::vector<StiffCase> stiff_cases() {
     }
   }
   {
-    // Rotated by 0.7 rad and moved to (512345.678, 5432109.876, 123.4), as tests/test_visibility.cpp
+    // Rotated by 0.7 rad and moved to (512345.678, 5432109.876, 123.4), as tests/geometry/test_visibility.cpp
     // does. Rounding the moved inputs (ulp(5.4e6) = 9.3e-10 m) moves every vertex, the sensor's
     // included, by up to 4.7e-10 m horizontally; the edges of the visible region (the window's, and
     // the outer opening's projected with s ≤ 1) move by at most 3 × 4.7e-10 m, each changing SC by

@@ -15,7 +15,7 @@ namespace daylit {
 
 // Cl2(x) = −∫_0^x log|2 sin(t/2)| dt = Σ_k sin(kx)/k², for any real x (odd, period 2π, zero at
 // multiples of π). GSL's gsl_sf_clausen: within a few tens of ulp of max(|Cl2|, 1) over a period
-// (DESIGN.md §7; proven against MPFR in tests/test_clausen.cpp).
+// (DESIGN.md §7; proven against MPFR in tests/illumination/test_clausen.cpp).
 double clausen(double x);
 
 // Cl2 in long double and __float128 for the escalated sums of rational_moments.cpp, by the

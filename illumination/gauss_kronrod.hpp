@@ -13,7 +13,7 @@ namespace daylit::quadrature {
 
 // Gauss–Kronrod 7/15 on [−1, 1], QUADPACK's tables to 33 digits: Kronrod nodes x_k, k = 0..7
 // (x_7 = 0; the odd ones are the Gauss nodes), their Kronrod weights, and the Gauss weights of
-// x_1, x_3, x_5, x_7. tests/test_quadrature_rules.cpp checks them against the Gauss–Legendre rule
+// x_1, x_3, x_5, x_7. tests/illumination/test_quadrature_rules.cpp checks them against the Gauss–Legendre rule
 // and exact integrals of polynomials.
 inline constexpr long double kXgk[8] = {0.991455371120812639206854697526329L, 0.949107912342758524526189684047851L,
                                         0.864864423359769072789712788640926L, 0.741531185599394439863864773280788L,

@@ -13,7 +13,7 @@ namespace daylit::quadrature {
 // cos(π(i + 3/4)/(n + 1/2)) (Abramowitz and Stegun 22.16.6), P_n and P_n' by the three-term
 // recurrence; weights 2/((1 − x²) P_n'(x)²) (A&S 25.4.29). Newton stops at a step below 1e-19
 // (converged to an ulp of long double, 3–4 steps). Accuracy: nodes and weights within a few ulp
-// of long double for n ≤ 1000, which tests/test_quadrature_rules.cpp checks against closed forms
+// of long double for n ≤ 1000, which tests/illumination/test_quadrature_rules.cpp checks against closed forms
 // and exact integrals of monomials. O(n²).
 struct GaussLegendreRule {
   std::vector<long double> x, w;

@@ -33,7 +33,7 @@ struct LuminaireIrradiance {
 };
 
 // Highest total degree of the exitance accepted. Measured (bench rational; the stress geometries
-// of tests/test_polynomial_luminaire.cpp): in double the recurrences' terms outgrow the result
+// of tests/illumination/test_polynomial_luminaire.cpp): in double the recurrences' terms outgrow the result
 // (κ ≳ 1e3) from degree ~6 on, and the escalation to long double and __float128 keeps the
 // estimated error below 1e-13 through degree 24 on receivers 1e-6 from the plane, luminaires 50
 // widths off-axis and 1e-3-wide luminaires 100 away; but from degree ~16 every such call runs in

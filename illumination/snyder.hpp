@@ -9,7 +9,7 @@
 // (Lambertian) or the reflection direction R (Phong), σ the angular radius of a sub-hemispherical
 // source; ω outside [0, π] is clamped. Accuracy is relative, for the arguments as given (exact
 // doubles), measured while writing them against 40- to 120-digit mpmath quadrature (about 2,500
-// cases) and checked in tests/test_snyder.cpp against long-double quadrature. It holds also where
+// cases) and checked in tests/illumination/test_snyder.cpp against long-double quadrature. It holds also where
 // the value is ill-conditioned in its arguments (ω within δ of π/2 + σ, where I_hemi_sub vanishes
 // like δ^{5/2}): there the inputs' own rounding, not the evaluation, limits what the value means.
 
@@ -52,7 +52,7 @@ double I_hemi_sub(double omega, double sigma);
 // Hermite segments on [π/2 − σ, π/2] and [π/2, π/2 + σ] matching value and ω-derivative at
 // π/2 − σ (sin³σ, −cos σ sin²σ), π/2 ((σ − sin σ cos σ)/π, −½ sin²σ) and π/2 + σ (0, 0).
 // Maximum absolute error over σ ∈ (0, π/2], ω ∈ [0, π] (measured on 400 × 2,000 points, bounded in
-// tests/test_snyder.cpp): 6.80e−3, at σ = 1.4035, ω = 2.354 (5.40e−3 at σ = π/2); relative to the
+// tests/illumination/test_snyder.cpp): 6.80e−3, at σ = 1.4035, ω = 2.354 (5.40e−3 at σ = π/2); relative to the
 // peak sin²σ at most 7.04e−3 (σ = 1.3635); for small σ it is 3.57e−3 sin³σ. σ ∈ [0, π/2]
 // (for σ > π/2, where Snyder defines no fillet, it returns I_hemi_sub).
 double I_hemi_sub_hermite(double omega, double sigma);

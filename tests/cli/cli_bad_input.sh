@@ -3,7 +3,7 @@
 # no output file left behind; never a crash, a sanitizer report or a hang. Then what must work:
 # repeated vertices and sensors on occluders; millions of lines in bounded memory; and `daylit
 # eval` on garbage (answered line by line, errors naming file:line). The reader-level matrix is
-# tests/test_bad_input.cpp.
+# tests/geometry/test_bad_input.cpp.
 set -u
 daylit=$1
 work=$(mktemp -d)

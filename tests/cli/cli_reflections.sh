@@ -13,7 +13,7 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 room=(--scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts")
-# A coarse mesh and no refinement: this checks the plumbing, tests/test_reflections.cpp the numbers.
+# A coarse mesh and no refinement: this checks the plumbing, tests/simulation/test_reflections.cpp the numbers.
 fast=(--components all --element-size 3 --max-refinements 0 --threads 2)
 "$daylit" df "${room[@]}" "${fast[@]}" --out "$work/all.csv" --summary "$work/all.json" --quiet || fail "df on the room"
 "$daylit" df "${room[@]}" --components sc --out "$work/sc.csv" --quiet || fail "df --components sc on the room"

@@ -4,7 +4,7 @@
 # all-rational reference (on every 40th sensor: the reference is slow).
 set -eu
 # These checks are of the sky component (geometry modes against each other), so they run with
-# --components sc; the reflected components have tests/cli_reflections.sh.
+# --components sc; the reflected components have tests/cli/cli_reflections.sh.
 daylit=$1
 samples=$2
 work=$(mktemp -d)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""References for the `irradiance` queries of tests/cli_eval.sh, in 40-digit mpmath, sharing no
+"""References for the `irradiance` queries of tests/cli/cli_eval.sh, in 40-digit mpmath, sharing no
 code or formula with daylit's kernels: Howell's configuration factor of a parallel rectangle
 (DESIGN.md §7) summed over the corners about the foot point (exact for a uniform luminaire, also
 when an occluder's straight shadow edge cuts it), differentiated numerically by mpmath.diff; and

@@ -2,7 +2,7 @@
 // binary garbage, huge numbers, NaN and Inf, warped, self-intersecting and zero-area polygons,
 // repeated vertices, sensors on and inside walls. Each must give a clear error naming file and
 // line, or a defined result; never a crash. The CLI side (exit status, no partial output files,
-// millions of lines in bounded memory) is tests/cli_bad_input.sh. Regressions of what the fuzzers
+// millions of lines in bounded memory) is tests/cli/cli_bad_input.sh. Regressions of what the fuzzers
 // (fuzz/) found are at the end.
 
 #include <catch2/catch.hpp>
