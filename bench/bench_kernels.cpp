@@ -40,6 +40,7 @@
 #include "illumination/moments.hpp"
 #include "illumination/monte_carlo.hpp"
 #include "illumination/solid_angle.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit::cli {
 
@@ -142,18 +143,18 @@ struct Reference {
 // The upward recurrence for G keeps its absolute error at the scale of θ, which the error estimate
 // accounts for; in 113 bits that is far below the double results it judges.
 Reference reference_moment(const KernelCase& c) {
+  using real::Tracked;
   const int n = c.n;
   const bool double_axis = c.v.has_value();
   const real::V3<Ref> w(c.w), v(c.v.value_or(Vec3{}));
-  std::vector<Ref> boundary(std::size_t(std::max(n, 1)), Ref(0)), boundary_magnitude(boundary);
-  Ref boundary_v = 0, boundary_v_magnitude = 0, sigma = 0, sigma_magnitude = 0;
+  // Each sum with the sum of its terms' magnitudes (tracked_sum.hpp), an arc's terms counted at
+  // their bound |w·m| θ.
+  std::vector<Tracked<Ref>> boundary(std::size_t(std::max(n, 1)));
+  Tracked<Ref> boundary_v, sigma;
   const int k_max = double_axis ? n : n - 1;
   std::vector<Ref> G(std::size_t(std::max(k_max, 0)) + 1);
   for (const auto& loop : c.region.loops) {
-    for_each_solid_angle_term<Ref>(loop, [&](Ref t) {
-      sigma += t;
-      sigma_magnitude += real::abs(t);
-    });
+    for_each_solid_angle_term<Ref>(loop, [&](Ref t) { sigma.add(t); });
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const auto arc = arc_edge(real::V3<Ref>(loop[i]), real::V3<Ref>(loop[(i + 1) % loop.size()]));
       if (!arc) continue;
@@ -168,38 +169,29 @@ Reference reference_moment(const KernelCase& c) {
         Yp *= Y;
       }
       const Ref wm = dot(w, arc->normal);
-      for (int k = 0; k < n; ++k) {
-        boundary[std::size_t(k)] += wm * G[std::size_t(k)];
-        boundary_magnitude[std::size_t(k)] += real::abs(wm) * arc->length;
-      }
+      for (int k = 0; k < n; ++k) boundary[std::size_t(k)].add(wm * G[std::size_t(k)], real::abs(wm) * arc->length);
       if (double_axis) {
         const Ref vm = dot(v, arc->normal);
-        boundary_v += vm * G[std::size_t(n)];
-        boundary_v_magnitude += real::abs(vm) * arc->length;
+        boundary_v.add(vm * G[std::size_t(n)], real::abs(vm) * arc->length);
       }
     }
   }
   const int top = double_axis ? n - 1 : n;  // highest axial order needed
   const Ref w2 = dot(w, w);                   // not 1 for a normalised double: it matters at high orders
-  std::vector<Ref> tau(std::size_t(std::max(top, 0)) + 1), magnitude(tau.size());
+  std::vector<Tracked<Ref>> tau(std::size_t(std::max(top, 0)) + 1);
   tau[0] = sigma;
-  magnitude[0] = sigma_magnitude;
   for (int k = 1; k <= top; ++k) {
-    const Ref lower = k >= 2 ? tau[std::size_t(k) - 2] : Ref(0), lower_m = k >= 2 ? magnitude[std::size_t(k) - 2] : Ref(0);
+    const Tracked<Ref> lower = k >= 2 ? tau[std::size_t(k) - 2] : Tracked<Ref>{};
     tau[std::size_t(k)] = (Ref(k - 1) * w2 * lower + boundary[std::size_t(k) - 1]) / Ref(k + 1);
-    magnitude[std::size_t(k)] = (Ref(k - 1) * w2 * lower_m + boundary_magnitude[std::size_t(k) - 1]) / Ref(k + 1);
   }
-  Ref value = 0, total = 0;
+  Tracked<Ref> result;
   if (!double_axis) {
-    value = tau[std::size_t(n)];
-    total = magnitude[std::size_t(n)];
+    result = tau[std::size_t(n)];
   } else {
-    const Ref wv = dot(w, v);
-    const Ref lower = n > 0 ? tau[std::size_t(n) - 1] : Ref(0), lower_m = n > 0 ? magnitude[std::size_t(n) - 1] : Ref(0);
-    value = (Ref(n) * wv * lower + boundary_v) / Ref(n + 2);
-    total = (Ref(n) * real::abs(wv) * lower_m + boundary_v_magnitude) / Ref(n + 2);
+    const Tracked<Ref> lower = n > 0 ? tau[std::size_t(n) - 1] : Tracked<Ref>{};
+    result = (Ref(n) * dot(w, v) * lower + boundary_v) / Ref(n + 2);
   }
-  return {double(value), 10 * kReferenceRoundoff * double(total / real::abs(value))};
+  return {double(result.value), 10 * kReferenceRoundoff * double(real::condition(result))};
 }
 
 // ── Measurements ────────────────────────────────────────────────────────────────────────────

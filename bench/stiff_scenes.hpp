@@ -24,6 +24,7 @@
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "illumination/tracked_sum.hpp"
 #include "materials/glass_transmittance.hpp"
 
 namespace daylit::stiff {
@@ -191,7 +192,7 @@ inline ReferenceValue reference_piece(const RVec& p, const RVec& n_in, const Vis
     if (cross2(A, B) != 0) sweep_sum += std::atan2(cross2(A, B), dot2(A, B));
   }
   const bool outside = !on_boundary && std::abs(sweep_sum) < 1;
-  Real value = 0, magnitude = 0;
+  real::Tracked<Real> sum;  // the integral's pieces, with their magnitudes (tracked_sum.hpp)
   if (outside) {
     for (std::size_t i = 1; i + 1 < q.size(); ++i) {
       const P2 A = q[0], AB{q[i].x - A.x, q[i].y - A.y}, BC{q[i + 1].x - q[i].x, q[i + 1].y - q[i].y};
@@ -208,8 +209,7 @@ inline ReferenceValue reference_piece(const RVec& p, const RVec& n_in, const Vis
                            0, 1, relative / 4);
           },
           0, 1, relative);
-      value += jacobian * term;
-      magnitude += std::abs(jacobian * term);
+      sum.add(jacobian * term);
     }
   } else {
     for (std::size_t i = 0; i < q.size(); ++i) {
@@ -228,12 +228,11 @@ inline ReferenceValue reference_piece(const RVec& p, const RVec& n_in, const Vis
                              std::atan2(R, h), relative / 4);
           },
           0, sweep, relative);
-      value += (area > 0 ? 1 : -1) * term;
-      magnitude += std::abs(term);
+      sum.add((area > 0 ? 1 : -1) * term);
     }
   }
   const Real to_percent = 100 / (7 * 3.141592653589793238462643383279502884L / 9);
-  return {value * to_percent, value != 0 ? relative * magnitude / std::abs(value) : 0};
+  return {sum.value * to_percent, relative * real::condition(sum)};
 }
 
 inline ReferenceValue reference_sky_component(const StiffCase& c) {
