@@ -130,7 +130,8 @@ std::vector<SensorGrid> floor_grids(const FloorSources& sources, const FloorGrid
       continue;
     }
     // Rooms split into several Floor faces, or .rad polygons sharing a name, are one grid.
-    auto same = std::find_if(grids.begin(), grids.end(), [&](const SensorGrid& g) { return g.name == name; });
+    // (grid.name, not the structured binding: C++20 lets a lambda capture one, clang 14 does not.)
+    auto same = std::find_if(grids.begin(), grids.end(), [&grid](const SensorGrid& g) { return g.name == grid.name; });
     if (same != grids.end()) same->sensors.insert(same->sensors.end(), grid.sensors.begin(), grid.sensors.end());
     else grids.push_back(std::move(grid));
   }
