@@ -7,7 +7,6 @@
 #include <numbers>
 #include <string>
 
-#include "geometry/convex_pieces.hpp"
 #include "illumination/moments.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/radiosity_solver.hpp"
@@ -51,31 +50,6 @@ std::vector<ApertureGroup> group_apertures(const Scene& scene) {
     it->apertures.push_back(a);
   }
   return groups;
-}
-
-// ---- Occluders cut to one side of a plane -----------------------------------------------------
-// The part of a convex polygon strictly on the positive side of the plane n·(y − p) = 0
-// (Sutherland–Hodgman; vertices within `tol` of the plane count as on it). Empty where nothing
-// is strictly on that side (a polygon in the plane cannot hide anything from a receiver off it).
-std::vector<Vec3> clip_convex_to_side(const std::vector<Vec3>& v, const Vec3& n, const Vec3& p, double tol) {
-  std::vector<double> d(v.size());
-  bool any_inside = false;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    d[i] = dot(n, v[i] - p);
-    if (std::abs(d[i]) <= tol) d[i] = 0;
-    any_inside |= d[i] > 0;
-  }
-  if (!any_inside) return {};
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::size_t j = (i + 1) % v.size();
-    if (d[i] >= 0) out.push_back(v[i]);
-    if ((d[i] > 0 && d[j] < 0) || (d[i] < 0 && d[j] > 0)) {
-      const double t = d[i] / (d[i] - d[j]);
-      out.push_back(v[i] + t * (v[j] - v[i]));
-    }
-  }
-  return out.size() >= 3 ? out : std::vector<Vec3>{};
 }
 
 struct Box {
@@ -220,8 +194,11 @@ class Transport {
   // directions (glass), for the error estimate.
   template <class Sink>
   void transport(const Vec3& x, const Vec3& n, std::size_t own_surface, VisibilityCounters& counters, Sink&& sink) const {
+    // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself
+    // (the receiver's own polygon lies in the receiver's tangent plane and casts no shadow).
     VisibilityOptions opt;
     opt.clip_to_horizon = false;
+    opt.occluders_beyond = false;
     for (std::size_t s = 0; s < mesh_.surfaces.size(); ++s) {
       if (s == own_surface) continue;
       const RadiositySurface& surf = mesh_.surfaces[s];
@@ -232,9 +209,9 @@ class Transport {
       bool in_front = false;
       for (const Vec3& v : poly.vertices) in_front |= dot(n, v - x) > 0;
       if (!in_front) continue;
-      const Engines& en = engines_[2 * s + side];
+      opt.excluded_occluder = surf.occluder;
       const std::uint64_t clipped = counters.pairs_clipped;
-      const SphericalRegion inside = en.inside.visible_region(x, n, 0, counters, opt);
+      const SphericalRegion inside = inside_->visible_region(x, n, s, counters, opt);
       const bool inside_free = counters.pairs_clipped == clipped;
       std::vector<SphericalRegion> inside_parts;
       inside_parts.reserve(surf.elements.size());
@@ -253,7 +230,7 @@ class Transport {
         for (std::size_t a : groups_[g].apertures) may_cross |= reach.meets(aperture_boxes_[a], 1e-9 * scale_);
         if (!may_cross) continue;
         const std::uint64_t clipped_t = counters.pairs_clipped;
-        const SphericalRegion through = en.through[g].visible_region(x, n, 0, counters, opt);
+        const SphericalRegion through = through_[g].visible_region(x, n, s, counters, opt);
         if (through.empty()) continue;
         const bool through_free = counters.pairs_clipped == clipped_t;
         const ApertureGroup& group = groups_[g];
@@ -290,51 +267,25 @@ class Transport {
   }
 
  private:
-  struct Engines {
-    VisibilityEngine inside;
-    std::vector<VisibilityEngine> through;
-  };
-
+  // The surfaces as luminaires (aperture s: surface s), seen past the opaque polygons, which keep
+  // their indices in Scene::occluders so that the luminaire's own can be excluded by index:
+  // `inside_` also past every aperture (what is seen inside), `through_[g]` past the apertures
+  // of the other groups only, so that through_[g] − inside_ is what is seen through group g.
+  // The cut to the receiver's side of the luminaire's plane is the engine's, exact
+  // (VisibilityOptions::occluders_beyond), so one engine serves every surface and both sides.
   void build_luminaire_engines() {
-    // Convex pieces of every opaque polygon and every aperture, once.
-    std::vector<std::vector<Vec3>> opaque, apertures;
-    std::vector<std::size_t> aperture_of;
-    for (std::size_t i = 0; i < scene_.occluders.size(); ++i)
-      for (const auto& p : convex_pieces(scene_.occluders[i], i)) opaque.push_back(p.vertices);
-    for (std::size_t a = 0; a < scene_.apertures.size(); ++a)
-      for (const auto& p : convex_pieces(scene_.apertures[a].polygon, a)) {
-        apertures.push_back(p.vertices);
-        aperture_of.push_back(a);
-      }
-    std::vector<std::size_t> group_of(scene_.apertures.size());
-    for (std::size_t g = 0; g < groups_.size(); ++g)
-      for (std::size_t a : groups_[g].apertures) group_of[a] = g;
-    const double tol = 1e-12 * scale_;
-    for (const RadiositySurface& s : mesh_.surfaces) {
-      for (int side = 0; side < 2; ++side) {
-        const Vec3 n = side == 0 ? s.normal : -1.0 * s.normal;
-        const auto cut = [&](const std::vector<Vec3>& v, const std::string& name, Scene& into) {
-          std::vector<Vec3> c = clip_convex_to_side(v, n, s.point, tol);
-          if (c.empty()) return;
-          Polygon p;
-          p.vertices = std::move(c);
-          p.name = name;
-          into.occluders.push_back(std::move(p));
-        };
-        Scene base;
-        base.apertures.push_back({scene_.occluders[s.occluder], 1.0});
-        for (const auto& v : opaque) cut(v, "opaque", base);
-        Scene inside = base;
-        for (const auto& v : apertures) cut(v, "aperture", inside);
-        std::vector<VisibilityEngine> through;
-        for (std::size_t g = 0; g < groups_.size(); ++g) {
-          Scene t = base;
-          for (std::size_t i = 0; i < apertures.size(); ++i)
-            if (group_of[aperture_of[i]] != g) cut(apertures[i], "aperture", t);
-          through.emplace_back(t, options_.mode);
-        }
-        engines_.push_back({VisibilityEngine(inside, options_.mode), std::move(through)});
-      }
+    Scene base;
+    for (const RadiositySurface& s : mesh_.surfaces) base.apertures.push_back({scene_.occluders[s.occluder], 1.0});
+    base.occluders = scene_.occluders;
+    Scene inside = base;
+    for (const Aperture& a : scene_.apertures) inside.occluders.push_back(a.polygon);
+    inside_ = std::make_unique<VisibilityEngine>(inside, options_.mode);
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      Scene t = base;
+      for (std::size_t h = 0; h < groups_.size(); ++h)
+        if (h != g)
+          for (std::size_t a : groups_[h].apertures) t.occluders.push_back(scene_.apertures[a].polygon);
+      through_.emplace_back(t, options_.mode);
     }
     remesh_boxes();
   }
@@ -369,7 +320,8 @@ class Transport {
   std::vector<Box> aperture_boxes_, surf_boxes_;
   Box sensor_box_;
   RadiosityMesh mesh_;
-  std::vector<Engines> engines_;  // per surface and side: 2 s + side
+  std::unique_ptr<VisibilityEngine> inside_;
+  std::vector<VisibilityEngine> through_;  // per aperture group
   std::unique_ptr<VisibilityEngine> sky_box_;
 };
 

@@ -9,12 +9,12 @@
 //   aperture's transmittance; (b) the sky and far ground seen directly, through the six inward
 //   faces of a box around the model, past every opaque and aperture polygon.
 //   Transport: the irradiance from every element of every other reflecting surface P, over the
-//   exactly visible part of P (element_transport.hpp). Visibility between surfaces uses one
-//   engine per side of P whose occluders are the opaque polygons cut to the half-space on that
-//   side of P's plane: everything that can stand between a receiver and P, and nothing beyond P
-//   (a receiver on that side sees P; what lies past P's plane cannot hide it), which is the
-//   luminaire visibility of DESIGN.md §1 without a change to the engine. Two occluder sets:
-//   with the aperture polygons ("inside": seen without crossing an aperture; IRC at sensors) and,
+//   exactly visible part of P (element_transport.hpp). Visibility between surfaces uses engines
+//   built once whose apertures are the reflecting surfaces, queried as luminaires
+//   (VisibilityOptions::occluders_beyond = false: what lies past P's plane cannot hide it, and what
+//   crosses it is clipped to the receiver's side exactly, inside the engine) with P itself
+//   excluded (DESIGN.md §1). Two occluder sets besides the opaque polygons:
+//   the aperture polygons ("inside": seen without crossing an aperture; IRC at sensors) and,
 //   per group of apertures of equal transmittance, without that group's polygons ("through"); the
 //   difference is what is seen through those apertures (ERC at sensors), weighted by their
 //   transmittance (glass: T(μ) at the direction of the element's centroid, whose spread over the

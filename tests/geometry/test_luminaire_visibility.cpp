@@ -181,6 +181,14 @@ TEST_CASE("surfaces meeting at a corner see each other whole, the receiver lying
     // The wall is 2 away; in its coordinates (y − 1, z) it spans [−1, 3] × [0, 3].
     const Seen wall = seen_exactly("corner: floor node sees the wall", scene, p, n, luminaire_options(false));
     CHECK(wall.solid_angle == Approx(rectangle_solid_angle(-1, 3, 0, 3, 2)).epsilon(kClosedForm));
+    // The radiosity's query (reflected_components.cpp) excludes the luminaire, the one exclusion
+    // there is, and leaves in the floor the receiver lies on: that floor, in the receiver's
+    // tangent plane, hides nothing, so the region is the same whichever of the two is excluded.
+    const Seen lum_excluded = seen_exactly("corner: wall excluded, floor node's floor kept", scene, p, n, luminaire_options(false, 1));
+    const Seen own_excluded = seen_exactly("corner: floor node's floor excluded", scene, p, n, luminaire_options(false, 0));
+    CHECK(lum_excluded.solid_angle == Approx(wall.solid_angle).epsilon(kClosedForm));
+    CHECK(lum_excluded.lambert == Approx(wall.lambert).epsilon(kClosedForm));
+    CHECK(own_excluded.solid_angle == Approx(wall.solid_angle).epsilon(kClosedForm));
     // With the occluders beyond (and the wall excluded) the facade hides it all.
     CHECK(seen(scene, GeometryMode::exact, p, n, luminaire_options(true, 1)).solid_angle == 0);
   }
@@ -192,6 +200,10 @@ TEST_CASE("surfaces meeting at a corner see each other whole, the receiver lying
     // seen spans [0, 4] × [−2, 2], 1.5 below.
     const Seen floor = seen_exactly("corner: wall node sees the floor", scene, p, n, luminaire_options(false));
     CHECK(floor.solid_angle == Approx(rectangle_solid_angle(0, 4, -2, 2, 1.5)).epsilon(kClosedForm));
+    // As above, the wall node's own wall (occluder 1) kept and the floor (the luminaire) excluded.
+    const Seen lum_excluded = seen_exactly("corner: floor excluded, wall node's wall kept", scene, p, n, luminaire_options(false, 0));
+    CHECK(lum_excluded.solid_angle == Approx(floor.solid_angle).epsilon(kClosedForm));
+    CHECK(lum_excluded.lambert == Approx(floor.lambert).epsilon(kClosedForm));
     CHECK(seen(scene, GeometryMode::exact, p, n, luminaire_options(true, 0)).solid_angle == 0);
   }
 }
