@@ -13,6 +13,7 @@
 
 #include "geometry/error.hpp"
 #include "illumination/cap_clip.hpp"
+#include "illumination/gauss_legendre.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/sensor_loop.hpp"
 #include "sky/hour_sun.hpp"
@@ -35,6 +36,17 @@ bool occupied(const WeatherFile& file, const WeatherRecord& r) {
   return r.hour >= 8 && r.hour < 18;
 }
 
+// The clamp a line of PerezCondition::clamps_applied names, by the numbering of perez_sky.hpp.
+std::string clamp_kind(const std::string& line) {
+  const auto starts = [&](const char* prefix) { return line.rfind(prefix, 0) == 0; };
+  if (starts("sun altitude")) return "1: sun altitude lowered to 87 deg for the sky";
+  if (starts("Δ")) return "2: Delta raised to 0.2 for the luminance coefficients";
+  if (starts("b =")) return "4: gradation held at cos(theta) = 0.01 (b > 0)";
+  if (starts("negative luminance")) return "5: negative luminance set to 0 (hour by full cubature)";
+  if (starts("direct efficacy")) return "6: negative direct efficacy set to 0";
+  return line;
+}
+
 }  // namespace
 
 double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, const Vec3& n, const Vec3& sun,
@@ -45,6 +57,37 @@ double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, c
   const double sin_rho = std::sin(rho);
   // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the disk's centre.
   return aperture_transmittance(aperture, sun) * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
+}
+
+CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients) {
+  CircumsolarRule rule;
+  rule.regions = coefficients.regions.size();
+  for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
+    const quadrature::GaussLegendreRule gl = quadrature::gauss_legendre(order);
+    std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
+    for (const auto& [a, region] : coefficients.regions) {
+      const Aperture& aperture = scene.apertures[std::size_t(a)];
+      for (const DirectionLoop& loop : region.loops) {
+        for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+          const Vec3 A = loop[0], ab = loop[i] - A, ac = loop[i + 1] - A;
+          const double det = dot(A, cross(ab, ac));
+          if (det == 0) continue;
+          for (int p = 0; p < order; ++p) {
+            const double x = double((gl.x[std::size_t(p)] + 1) / 2), wx = double(gl.w[std::size_t(p)] / 2);
+            for (int q = 0; q < order; ++q) {
+              const double y = double((gl.x[std::size_t(q)] + 1) / 2), wy = double(gl.w[std::size_t(q)] / 2);
+              // Duffy's collapse of the fan triangle, as annual_coefficients.cpp integrates the moments.
+              const Vec3 point = A + (x * (1 - y)) * ab + (x * y) * ac;
+              const double r = norm(point);
+              const Vec3 u = (1 / r) * point;
+              nodes.push_back({u, wx * wy * x * det / (r * r * r) * dot(sensor.normal, u) * aperture_transmittance(aperture, u)});
+            }
+          }
+        }
+      }
+    }
+  }
+  return rule;
 }
 
 AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_horizontal_lux, double direct_normal_lux,
@@ -128,8 +171,7 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
       ++out.sky_hours;
       out.floored_hours += hour.floored;
       out.max_fit_error = std::max(out.max_fit_error, hour.fit.bound_factor);
-      // Count each clamp by its kind: the text before the first digit-bearing detail varies per hour.
-      for (const std::string& line : hour.perez->condition().clamps_applied) ++counts[line.substr(0, line.find_first_of("=0123456789"))];
+      for (const std::string& line : hour.perez->condition().clamps_applied) ++counts[clamp_kind(line)];
     } else if (hour.skipped.rfind("refused", 0) == 0) {
       ++out.refused_hours;
     }
@@ -140,7 +182,7 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
 }
 
 HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
-                                 const AnnualHour& hour, const AnnualOptions& options) {
+                                 const AnnualHour& hour, const AnnualOptions& options, const CircumsolarRule* rule) {
   HourIlluminance out;
   if (!hour.sky) return out;
   const std::size_t size = hour.fit.coefficients.size(), groups = coefficients.lambert.size();
@@ -165,17 +207,39 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
     const double gamma = std::atan2(norm(cross(sky.sun(), u)), dot(sky.sun(), u));
     return (1 + c.a * std::exp(c.b / t)) * c.c * std::exp(c.d * gamma);
   };
+  // The circumsolar term by the sensor's fixed rules where they agree (the sun well away from every
+  // region, so the indicatrix's kink is not inside: checked exactly with a cap of kCircumsolarMargin
+  // about the sky's sun), else by adaptive cubature split at the sun.
+  bool fixed = rule != nullptr && !hour.floored && c.c != 0 && rule->regions == coefficients.regions.size();
+  if (fixed) {
+    for (const auto& [a, region] : coefficients.regions)
+      if (cap_lambert(region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
+  }
+  if (fixed) {
+    double high = 0, low = 0;
+    for (const CircumsolarRule::Node& node : rule->high) high += node.weight * circumsolar(node.u);
+    for (const CircumsolarRule::Node& node : rule->low) low += node.weight * circumsolar(node.u);
+    if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high)) {
+      value += high;
+      error += std::abs(high - low);
+    } else {
+      fixed = false;
+    }
+  }
   for (const auto& [a, region] : coefficients.regions) {
     const Aperture& aperture = scene.apertures[std::size_t(a)];
-    const auto transmittance = [&aperture](const Vec3& u) { return aperture_transmittance(aperture, u); };
-    const QuadratureResult q =
-        hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
-                                                 region, sensor.normal, options.circumsolar_tolerance, transmittance)
-        : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
-                                               options.circumsolar_tolerance, transmittance)
-                   : QuadratureResult{0, 0, 0};
-    value += q.value;
-    error += q.error_estimate;
+    if (!fixed) {
+      const auto transmittance = [&aperture](const Vec3& u) { return aperture_transmittance(aperture, u); };
+      const QuadratureResult q =
+          hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
+                                                   region, sensor.normal, options.circumsolar_tolerance, transmittance)
+          : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
+                                                 options.circumsolar_tolerance, transmittance)
+                     : QuadratureResult{0, 0, 0};
+      value += q.value;
+      error += q.error_estimate;
+      out.adaptive = true;
+    }
     if (hour.direct_normal_lux > 0)
       out.sun_lux += direct_sun_lux(aperture, region, sensor.normal, hour.sun, hour.direct_normal_lux);
   }
@@ -238,12 +302,13 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
   r.illuminance.assign(n * hours, 0.0f);
   r.max_bound_lux.assign(n, 0.0);
   r.max_bound_relative.assign(n, 0.0);
-  for_each_sensor<int>(n, 4, progress, [&](std::size_t i, int&) {
+  const auto adaptive_counts = for_each_sensor<std::size_t>(n, 4, progress, [&](std::size_t i, std::size_t& adaptive) {
     const Sensor& s = grid.sensors[i];
     const SensorCoefficients& c = coefficients[i];
     const std::size_t size = std::size_t(annual_basis_size(options.degree));
     // The group's own coefficients and regions: the hour through group g alone.
     std::vector<SensorCoefficients> parts(ng);
+    std::vector<CircumsolarRule> rules;
     for (std::size_t g = 0; g < ng; ++g) {
       SensorCoefficients& part = parts[g];
       part.sky_direct.assign(c.sky_direct.begin() + std::ptrdiff_t(g * size), c.sky_direct.begin() + std::ptrdiff_t((g + 1) * size));
@@ -253,6 +318,7 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       part.max_uz = c.max_uz;
       for (const auto& [a, region] : c.regions)
         if (std::size_t(groups.group_of_aperture[std::size_t(a)]) == g) part.regions.emplace_back(a, region);
+      rules.push_back(circumsolar_rule(scene, s, part));
     }
     for (std::size_t h = 0; h < hours; ++h) {
       const AnnualHour& hour = sky.hours[h];
@@ -260,7 +326,8 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       double total = 0, bound = 0;
       for (std::size_t g = 0; g < ng; ++g) {
         const SensorCoefficients& part = parts[g];
-        const HourIlluminance e = hour_illuminance(scene, s, part, hour, options);
+        const HourIlluminance e = hour_illuminance(scene, s, part, hour, options, &rules[g]);
+        adaptive += e.adaptive;
         const double factor = r.blinds_closed[h * ng + g] ? options.closed_blind_transmittance : 1.0;
         total += factor * (e.sky_lux + e.sun_lux);
         bound += factor * e.bound_lux;
@@ -270,6 +337,7 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       if (total > 0) r.max_bound_relative[i] = std::max(r.max_bound_relative[i], bound / total);
     }
   });
+  for (std::size_t a : adaptive_counts) r.adaptive_circumsolar += a;
   r.hourly_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   return r;
 }

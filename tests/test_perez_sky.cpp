@@ -293,6 +293,33 @@ TEST_CASE("the annual daylight coefficients of one Perez hour agree with a 2-D q
       // ...and at D ≥ 24 the result is within 1e-6.
       if (degree >= 24) CHECK(error < 1e-6);
     }
+    // The production path (the sensor's fixed rules, adaptive cubature where the sun is near the
+    // region) at the annual default tolerance of the circumsolar term: the sun is in view, so the
+    // fixed rules must give way.
+    AnnualOptions options;
+    const AnnualHour hour = annual_hour(sky, sun, E_dh, 0, options);
+    VisibilityCounters counters;
+    const SensorCoefficients coefficients = sensor_coefficients(engine, scene, sensor, groups, options.degree, counters);
+    const CircumsolarRule rule = circumsolar_rule(scene, sensor, coefficients);
+    const HourIlluminance got = hour_illuminance(scene, sensor, coefficients, hour, options, &rule);
+    WARN("production path: |annual / reference - 1| = " << std::abs(got.sky_lux / want - 1));
+    CHECK(got.adaptive);
+    CHECK(std::abs(got.sky_lux / want - 1) < 1e-6);
+    // A sun far from the window (the same zenith angle, so the same bin, turned by 180° about z to
+    // shine on the room's back): the sensor's fixed rules carry the circumsolar term, and must
+    // agree with the reference as well.
+    const Vec3 far_sun{-sun.x, -sun.y, sun.z};
+    const double far_zenith = std::acos(far_sun.z) * 180 / std::numbers::pi;
+    const PerezSky far_sky(perez_condition(input(70, 800, far_zenith), PerezClamps::none), far_sun, PerezClamps::none);
+    const Reference far_r = reference(70, 800, far_zenith, 1400);
+    const LVec3 fs = test::lvec(far_sun);
+    const double far_want = double(window_reference(far_r, fs, lv(far_r, fs, {0, 0, 1}), p, obstructed)) * E_dh /
+                            far_sky.horizontal_irradiance_over_zenith();
+    const HourIlluminance far = hour_illuminance(scene, sensor, coefficients, annual_hour(far_sky, far_sun, E_dh, 0, options),
+                                                 options, &rule);
+    WARN("far sun, fixed rules: |annual / reference - 1| = " << std::abs(far.sky_lux / far_want - 1));
+    CHECK_FALSE(far.adaptive);
+    CHECK(std::abs(far.sky_lux / far_want - 1) < 1e-6);
   }
 }
 
