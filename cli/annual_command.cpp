@@ -129,6 +129,7 @@ int run_annual(AnnualCommandOptions opt) {
       r.shown_unit = "h";
       r.statistics = grid_statistics(r.shown, {250});
       write_falsecolour_image(outputs.stage(per_grid(opt.image, g.grid->name + "-direct_sun_hours", 2)), r);
+      write_temporal_map(outputs.stage(per_grid(opt.image, g.grid->name + "-temporal", 2)), g, sky);
     }
   }
 
@@ -228,7 +229,7 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
   cmd->add_option("--hourly", opt->hourly, "NumPy .npy file of hourly illuminance per sensor (float32; grid name appended when several)");
-  cmd->add_option("--image", opt->image, "PNG plans of per-sensor metrics (<stem>-<grid>-<metric>.png)");
+  cmd->add_option("--image", opt->image, "PNG plans of per-sensor metrics and a temporal map per grid (<stem>-<grid>-{da_300,udi_autonomous,direct_sun_hours,temporal}.png)");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   cmd->add_option("--pressure-hpa", opt->annual.pressure_hpa, "Local pressure for refraction (hPa; default 1013.25)")

@@ -7,6 +7,7 @@
 
 #include "geometry/error.hpp"
 #include "report/model_reports.hpp"
+#include "report/reports.hpp"
 
 namespace daylit::cli {
 
@@ -36,6 +37,30 @@ void write_annual_csv(const std::string& path, const std::vector<AnnualGridRepor
   write_annual_csv(out, grids);
   const bool failed = std::ferror(out) != 0;
   if (std::fclose(out) != 0 || failed) throw Error(path + ": cannot write CSV");
+}
+
+void write_temporal_map(const std::string& path, const AnnualGridReport& g, const AnnualSky& sky) {
+  // Day of the year from the month and day (29 February, where a file has it, is its own day).
+  constexpr int kBefore[12] = {0, 31, 60, 91, 121, 152, 182, 213, 244, 274, 305, 335};
+  SensorGrid cells;
+  cells.name = g.grid->name;
+  GridReport r;
+  r.grid = &cells;
+  for (std::size_t h = 0; h < g.result.hours; ++h) {
+    const WeatherRecord& rec = *sky.hours[h].record;
+    const int day = kBefore[rec.month - 1] + rec.day - 1;
+    // Hour cells 5 days tall, so that the map is about 365 × 120 cells wide and high.
+    cells.sensors.push_back({{double(day), 5.0 * (sky.hours[h].hour_ending - 1), 0}, {0, 0, 1}});
+    double mean = 0;
+    for (std::size_t i = 0; i < g.result.sensors; ++i) mean += g.result.illuminance[i * g.result.hours + h];
+    r.shown.push_back(g.result.sensors ? mean / double(g.result.sensors) : 0.0);
+  }
+  r.shown_title = "Grid-mean illuminance (lux) by hour";
+  r.cell_noun = "hours";
+  r.footer = "temporal map: day of the year along x (1 January at the left), hour of the day along y (midnight at the bottom)";
+  r.shown_unit = "lux";
+  r.statistics = grid_statistics(r.shown, kIlluminanceThresholds);
+  write_falsecolour_image(path, r);
 }
 
 nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std::string>& group_names) {
@@ -120,7 +145,10 @@ nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& option
           {"basis", {{"kind", "Chebyshev T_k(2 u_z - 1) times {1, u_x^2, u_y^2, u_z^2, u_x u_y, u_x u_z, u_y u_z}"},
                      {"degree", options.degree},
                      {"gradation_fit_bound_max", sky.max_fit_error}}},
-          {"circumsolar", {{"method", "adaptive cubature over each visible region, split at the sun"},
+          {"circumsolar", {{"method", fmt::format("fixed product rules per sensor (orders {} and {} per fan triangle) where the "
+                                                  "sky's sun is more than 5 deg from every region and the two agree to the "
+                                                  "tolerance; else adaptive cubature over the region, split at the sun",
+                                                  kCircumsolarOrderHigh, kCircumsolarOrderLow)},
                            {"tolerance", options.circumsolar_tolerance}}}};
 }
 

@@ -28,6 +28,12 @@ struct AnnualGridReport {
 void write_annual_csv(std::FILE* out, const std::vector<AnnualGridReport>& grids);
 void write_annual_csv(const std::string& path, const std::vector<AnnualGridReport>& grids);
 
+// The temporal map of a grid: its mean illuminance (with blinds) for every record, as a
+// falsecolour image with a legend, day of the year along x (1 January on the left) and hour of
+// the day along y (midnight at the bottom, 23:00–24:00 at the top), drawn by the plan renderer of
+// write_falsecolour_image with one cell per record.
+void write_temporal_map(const std::string& path, const AnnualGridReport& g, const AnnualSky& sky);
+
 nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std::string>& group_names);
 nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& options);
 

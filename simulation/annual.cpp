@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include "geometry/error.hpp"
 #include "illumination/cap_clip.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "materials/glass_transmittance.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/sensor_loop.hpp"
 #include "sky/hour_sun.hpp"
@@ -229,15 +231,25 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
   for (const auto& [a, region] : coefficients.regions) {
     const Aperture& aperture = scene.apertures[std::size_t(a)];
     if (!fixed) {
-      const auto transmittance = [&aperture](const Vec3& u) { return aperture_transmittance(aperture, u); };
+      // T(μ) about the pane's normal, found once per region rather than per evaluation; an open
+      // aperture's constant τ scales the result instead.
+      std::function<double(const Vec3&)> transmittance;
+      double scale = aperture.transmittance;
+      if (!aperture.angular_transmittance.empty()) {
+        const Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
+        transmittance = [&aperture, pane](const Vec3& u) {
+          return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
+        };
+        scale = 1;
+      }
       const QuadratureResult q =
           hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
                                                    region, sensor.normal, options.circumsolar_tolerance, transmittance)
           : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
                                                  options.circumsolar_tolerance, transmittance)
                      : QuadratureResult{0, 0, 0};
-      value += q.value;
-      error += q.error_estimate;
+      value += scale * q.value;
+      error += scale * q.error_estimate;
       out.adaptive = true;
     }
     if (hour.direct_normal_lux > 0)
