@@ -25,6 +25,7 @@
 #include "report/staged_output.hpp"
 #include "simulation/annual.hpp"
 #include "simulation/annual_metrics.hpp"
+#include "simulation/illuminance.hpp"
 #include "simulation/model_inputs.hpp"
 #include "sky/weather_file.hpp"
 
@@ -158,6 +159,11 @@ int run_annual(AnnualCommandOptions opt) {
                        {"groups", groups.names},
                        {"closed_transmittance", opt.annual.closed_blind_transmittance},
                        {"closed_applies_to", "the group's sky and sun light alike"}};
+  summary["sun"] = {{"disk_half_angle_deg", kSunHalfAngleDeg},
+                    {"position", opt.annual.sun_patch_mf > 0
+                                     ? fmt::format("centre of its Reinhart MF:{} patch (--sun-patches; not the true sun)",
+                                                   opt.annual.sun_patch_mf)
+                                     : std::string("NREL SPA at the hour's sun time (true sun)")}};
   summary["hours"] = {{"occupied", "8:00-18:00 local standard time (EPW hours ending 9..18)"},
                       {"en17037_daylight_hours", "the 4380 hours of highest sun altitude (half the year)"},
                       {"dark_hours_in_occupied", "count as 0 lux"}};
@@ -226,6 +232,10 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--closed-blind-transmittance", opt->annual.closed_blind_transmittance,
                   "Share of a window group's light that passes when its blinds are closed (default 0.2)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--sun-patches", opt->annual.sun_patch_mf,
+                  "Put the sun's disk at the centre of its Reinhart MF patch (1 = Tregenza's 145 ... 6) instead of the true "
+                  "sun, to measure what a patch-based sky does to ASE (default 0: the true sun)")
+      ->check(CLI::Range(0, 6));
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
   cmd->add_option("--hourly", opt->hourly, "NumPy .npy file of hourly illuminance per sensor (float32; grid name appended when several)");

@@ -92,6 +92,19 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   return rule;
 }
 
+SkyPatchCentre reinhart_patch_centre(double azimuth_deg, double altitude_deg, int mf) {
+  if (mf < 1) throw Error("the Reinhart subdivision MF must be at least 1");
+  constexpr int kTregenzaRow[7] = {30, 30, 24, 24, 18, 12, 6};
+  const double row_height = 90.0 / (7 * mf + 0.5);
+  const int row = int(std::floor(std::max(altitude_deg, 0.0) / row_height));
+  if (row >= 7 * mf) return {0, 90};  // the polar cap
+  const int count = kTregenzaRow[row / mf] * mf;
+  const double width = 360.0 / count;
+  const double az = std::fmod(std::fmod(azimuth_deg, 360.0) + 360.0, 360.0);
+  const int patch = int(std::lround(az / width)) % count;
+  return {patch * width, (row + 0.5) * row_height};
+}
+
 AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_horizontal_lux, double direct_normal_lux,
                        const AnnualOptions& options) {
   AnnualHour hour;
@@ -163,6 +176,11 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
       built.hour_ending = hour.hour_ending;
       built.sun_altitude_deg = hour.sun_altitude_deg;
       hour = std::move(built);
+      if (options.sun_patch_mf > 0) {
+        const SkyPatchCentre centre = reinhart_patch_centre(sun.position.azimuth_deg, 90 - sun.position.zenith_deg,
+                                                            options.sun_patch_mf);
+        hour.sun = site.model_direction(centre.azimuth_deg, centre.altitude_deg);
+      }
     } catch (const Error& e) {
       hour.skipped = std::string("refused: ") + e.what();
     }

@@ -39,7 +39,24 @@ struct AnnualOptions {
   double closed_blind_transmittance = 0.2;
   double blinds_threshold_lux = 1000, blinds_sensor_share = 0.02;
   double pressure_hpa = 1013.25, temperature_c = 10;
+  // 0: the sun's disk at the true sun (exact). MF ≥ 1: at the centre of the Reinhart MF patch
+  // that holds the sun (reinhart_patch_centre), as patch-based tools place it, to measure what
+  // the sky's discretisation alone does to ASE, direct sun hours and the blinds. The sky is exact
+  // either way.
+  int sun_patch_mf = 0;
 };
+
+// The centre (azimuth clockwise from true north, altitude; degrees) of the Reinhart patch of
+// subdivision MF (MF = 1: Tregenza's 145 patches) that holds the direction (azimuth, altitude):
+// rows of 90°/(7 MF + 0.5) in altitude with {30, 30, 24, 24, 18, 12, 6}·MF patches (each of
+// Tregenza's rows split MF times), the first patch of every row centred on true north, and a
+// polar cap of half a row (Reinhart and Walkenhorst 2001; Radiance's reinhart.cal, whose
+// azimuth origin may differ: a turn of the patches changes the count by the sun's position
+// within its patch, not the patch size).
+struct SkyPatchCentre {
+  double azimuth_deg, altitude_deg;
+};
+SkyPatchCentre reinhart_patch_centre(double azimuth_deg, double altitude_deg, int mf);
 
 // One record of the weather file, as the annual run takes it.
 struct AnnualHour {

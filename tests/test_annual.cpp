@@ -277,3 +277,34 @@ TEST_CASE("the .npy header is what NumPy's format 1.0 reads") {
   CHECK(dict.rfind("{'descr': '<f4', 'fortran_order': False, 'shape': (2400, 8760), }", 0) == 0);
   CHECK(dict.find_first_not_of(' ', dict.find('}') + 1) == dict.size() - 1);  // only spaces, then '\n'
 }
+
+TEST_CASE("Reinhart patch centres: Tregenza's rows at MF 1, split rows at MF 4, the cap") {
+  // MF 1: rows of 12°; (azimuth 5°, altitude 40°) lies in row 3 (36°–48°) of 24 patches of 15°,
+  // patch round(5/15) = 0 → centre (0°, 42°); (100°, 40°) → patch round(100/15) = 7 → (105°, 42°).
+  auto c = reinhart_patch_centre(5, 40, 1);
+  CHECK(c.azimuth_deg == Approx(0));
+  CHECK(c.altitude_deg == Approx(42));
+  c = reinhart_patch_centre(100, 40, 1);
+  CHECK(c.azimuth_deg == Approx(105));
+  CHECK(c.altitude_deg == Approx(42));
+  c = reinhart_patch_centre(100, 3, 1);
+  CHECK(c.altitude_deg == Approx(6));
+  CHECK(c.azimuth_deg == Approx(96));  // 30 patches of 12°: round(100/12) = 8
+  // The cap above 84° at MF 1, above 90 − 90/(2·28.5) = 88.42° at MF 4.
+  CHECK(reinhart_patch_centre(200, 85, 1).altitude_deg == 90);
+  CHECK(reinhart_patch_centre(200, 88.5, 4).altitude_deg == 90);
+  CHECK(reinhart_patch_centre(200, 88.3, 4).altitude_deg == Approx(27.5 * 90 / 28.5));
+  // MF 4: rows of 90/28.5 = 3.158°; row 0 has 120 patches of 3°.
+  c = reinhart_patch_centre(10.4, 1, 4);
+  CHECK(c.altitude_deg == Approx(90 / 28.5 / 2));
+  CHECK(c.azimuth_deg == Approx(9));
+  // The centre's patch is itself (a fixed point) at every MF.
+  for (int mf = 1; mf <= 6; ++mf)
+    for (double alt : {1.0, 20.0, 55.0, 80.0})
+      for (double az : {0.0, 91.0, 359.0}) {
+        const auto a = reinhart_patch_centre(az, alt, mf);
+        const auto b = reinhart_patch_centre(a.azimuth_deg, a.altitude_deg, mf);
+        CHECK(b.azimuth_deg == Approx(a.azimuth_deg));
+        CHECK(b.altitude_deg == Approx(a.altitude_deg));
+      }
+}
