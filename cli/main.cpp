@@ -5,6 +5,7 @@
 #include <exception>
 #include <iostream>
 
+#include "cli/annual_command.hpp"
 #include "cli/bench_command.hpp"
 #include "cli/df_command.hpp"
 #include "cli/eval_command.hpp"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   auto run_bench = daylit::cli::add_bench_command(app);
   auto run_sun = daylit::cli::add_sun_command(app);
   auto run_grid = daylit::cli::add_grid_command(app);
+  auto run_annual = daylit::cli::add_annual_command(app);
   // Exit codes, a contract for scripts (README, "Exit codes"): 0 success (and --help), 1 input
   // that cannot be used (a file, a line, a value in it), 2 a command line that cannot be parsed
   // (unknown or missing option, a value an option refuses), 3 an internal error.
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("bench")) return run_bench();
     if (app.got_subcommand("sun")) return run_sun();
     if (app.got_subcommand("grid")) return run_grid();
+    if (app.got_subcommand("annual")) return run_annual();
   } catch (const daylit::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;

@@ -118,11 +118,11 @@ void write_image(const std::string& path, const GridReport& report) {
   const std::string& unit = report.shown_unit;
   text(canvas, margin, 28, fmt::format("{}, grid '{}'", report.shown_title, report.grid->name), 20);
   text(canvas, margin, 54,
-       fmt::format("{0} sensors   mean {1:.4g} {5}   median {2:.4g} {5}   min {3:.4g} {5}   max {4:.4g} {5}", st.count,
-                   st.mean, st.median, st.min, st.max, unit),
+       fmt::format("{0} {6}   mean {1:.4g} {5}   median {2:.4g} {5}   min {3:.4g} {5}   max {4:.4g} {5}", st.count,
+                   st.mean, st.median, st.min, st.max, unit, report.cell_noun),
        14);
   text(canvas, margin, header_h + map_h + 28,
-       fmt::format("plan view, +y up; {:.2f} m x {:.2f} m", width_m, height_m), 14);
+       report.footer.empty() ? fmt::format("plan view, +y up; {:.2f} m x {:.2f} m", width_m, height_m) : report.footer, 14);
 
   // Legend: a vertical colour bar from 0 (bottom) to scale_max (top), five labelled ticks.
   const int bar_x = margin + map_w + margin, bar_y = header_h, bar_w = 28, bar_h = 300;

@@ -25,6 +25,9 @@ struct GridReport {
   // shows lux).
   std::vector<double> shown;
   std::string shown_title = "Daylight factor (%)", shown_unit = "%";
+  // What a cell stands for, and the line under the map (empty: the plan view's size in metres);
+  // `daylit annual`'s temporal map draws records as cells.
+  std::string cell_noun = "sensors", footer;
   const std::vector<double>& image_values() const { return shown.empty() ? df_percent : shown; }
   GridStatistics statistics;
   VisibilityCounters counters;

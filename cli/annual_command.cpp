@@ -1,0 +1,254 @@
+// `daylit annual`: every hour of a weather file (EPW or .wea) under the Perez sky and the sun, on
+// every sensor, through daylight coefficients (simulation/annual.hpp), and sDA, ASE, UDI, DA, cDA
+// and EN 17037 from the hourly values (simulation/annual_metrics.hpp).
+
+#include "cli/annual_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "geometry/error.hpp"
+#include "report/annual_reports.hpp"
+#include "report/model_reports.hpp"
+#include "report/npy_writer.hpp"
+#include "report/progress_bar.hpp"
+#include "report/reports.hpp"
+#include "report/staged_output.hpp"
+#include "simulation/annual.hpp"
+#include "simulation/annual_metrics.hpp"
+#include "simulation/illuminance.hpp"
+#include "simulation/model_inputs.hpp"
+#include "sky/weather_file.hpp"
+
+namespace daylit::cli {
+
+namespace {
+
+struct AnnualCommandOptions {
+  ModelFiles files;
+  std::string weather, out, summary, hourly, image;
+  std::string geometry = "exact", perez_clamps = "radiance";
+  AnnualOptions annual;
+  int threads = 0;
+  bool quiet = false;
+};
+
+// One path per grid: the given path for one grid, else with the grid's name inserted.
+std::string per_grid(const std::string& path, const std::string& grid, std::size_t grids) {
+  return image_path_for(path, grid, grids);
+}
+
+int run_annual(AnnualCommandOptions opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
+                            : opt.geometry == "rational" ? GeometryMode::rational
+                                                         : GeometryMode::exact;
+  opt.annual.clamps = parse_perez_clamps(opt.perez_clamps);
+  const WeatherFile weather = read_weather_file(opt.weather);
+  std::optional<Site> site;
+  std::string site_source = "--site";
+  if (!opt.files.site.empty()) {
+    site = read_site_file(opt.files.site);
+  } else {
+    site = Site::geographic(weather.location.latitude_deg, weather.location.longitude_deg, weather.location.elevation_m, 0);
+    site_source = "weather file (true north along +y)";
+  }
+  // The sun moves over the year: context buildings are kept or left out by their angular size
+  // alone (no sun beam), and the summary states the bound for the sky.
+  ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
+  if (!opt.quiet)
+    for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
+  const auto t_sky = std::chrono::steady_clock::now();
+  const AnnualSky sky = annual_sky(weather, *site, opt.annual);
+  const double sky_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_sky).count();
+  if (!opt.quiet && sky.refused_hours > 0)
+    std::cerr << fmt::format("notice: {} hours the published Perez model cannot serve are left dark (--perez-clamps none); "
+                             "--perez-clamps radiance serves them\n",
+                             sky.refused_hours);
+  std::vector<bool> occupied, daylight_hours;
+  std::vector<double> altitude;
+  for (const AnnualHour& h : sky.hours) {
+    occupied.push_back(h.occupied);
+    altitude.push_back(h.sun_altitude_deg);
+  }
+  daylight_hours = en17037_daylight_hours(altitude);
+
+  const VisibilityEngine engine(model.scene, mode);
+  const WindowGroups groups = window_groups(model.scene);
+  const bool show_progress = !opt.quiet && stderr_is_terminal();
+  std::vector<AnnualGridReport> grids;
+  for (const auto& grid : model.grids) {
+    ProgressBar bar("annual " + grid.name, grid.sensors.size(), show_progress);
+    AnnualGridReport g;
+    g.grid = &grid;
+    g.result = annual_grid(engine, model.scene, grid, sky, opt.annual, [&](std::size_t done) { bar.update(done); });
+    g.sensors = sensor_metrics(g.result.illuminance, g.result.direct_sun, g.result.sensors, g.result.hours, occupied,
+                               daylight_hours);
+    g.metrics = grid_metrics(g.result.illuminance, g.sensors, g.result.hours, occupied, daylight_hours);
+    grids.push_back(std::move(g));
+  }
+
+  StagedOutputs outputs;
+  if (!opt.out.empty()) write_annual_csv(outputs.stage(opt.out), grids);
+  if (!opt.hourly.empty())
+    for (const auto& g : grids)
+      write_npy_float32(outputs.stage(per_grid(opt.hourly, g.grid->name, grids.size())), g.result.illuminance,
+                        g.result.sensors, g.result.hours);
+  if (!opt.image.empty()) {
+    // One falsecolour plan per grid and metric, named <stem>-<grid>-<metric>.png.
+    const struct {
+      const char* key;
+      const char* title;
+      double SensorMetrics::*value;
+    } shown[] = {{"da_300", "Daylight autonomy DA300 (% of occupied hours)", &SensorMetrics::da_300_percent},
+                 {"udi_autonomous", "UDI 300-3000 lx (% of occupied hours)", &SensorMetrics::udi_autonomous_percent}};
+    for (const auto& g : grids) {
+      for (const auto& s : shown) {
+        GridReport r;
+        r.grid = g.grid;
+        for (const SensorMetrics& m : g.sensors) r.shown.push_back(m.*(s.value));
+        r.shown_title = s.title;
+        r.shown_unit = "%";
+        r.statistics = grid_statistics(r.shown, {50});
+        write_falsecolour_image(outputs.stage(per_grid(opt.image, g.grid->name + "-" + s.key, 2)), r);
+      }
+      GridReport r;
+      r.grid = g.grid;
+      for (const SensorMetrics& m : g.sensors) r.shown.push_back(m.direct_sun_hours);
+      r.shown_title = "Direct sun hours (occupied, >= 1000 lx, blinds open)";
+      r.shown_unit = "h";
+      r.statistics = grid_statistics(r.shown, {250});
+      write_falsecolour_image(outputs.stage(per_grid(opt.image, g.grid->name + "-direct_sun_hours", 2)), r);
+      write_temporal_map(outputs.stage(per_grid(opt.image, g.grid->name + "-temporal", 2)), g, sky);
+    }
+  }
+
+  nlohmann::json summary;
+  summary["quantity"] = "annual illuminance (lux) and climate-based metrics";
+  summary["components"] = {
+      {"computed", {"sky_direct", "sun_direct"}},
+      {"left_out",
+       {{"externally_reflected", "not computed yet (obstructions and the ground are black): annual results are sky + sun "
+                                 "direct only until the reflected components land"},
+        {"internally_reflected", "not computed yet (room surfaces are black)"}}}};
+  summary["weather"] = {{"path", weather.path},
+                        {"format", weather_format_name(weather.format)},
+                        {"place", weather.location.place},
+                        {"records", weather.records.size()},
+                        {"unusable_records", weather.unusable_records},
+                        {"missing_illuminances", weather.missing_illuminances},
+                        {"zero_illuminances_taken_as_missing", weather.zero_illuminances_taken_as_missing}};
+  summary["site"] = site_json(*site, opt.files.site);
+  summary["site"]["source"] = site_source;
+  summary["sky"] = annual_sky_json(sky, opt.annual);
+  summary["sky"]["run_time_s"] = sky_time;
+  summary["blinds"] = {{"rule", "IES LM-83: a window group's blinds close in an hour when more than 2 % of the grid's sensors "
+                                "get >= 1000 lx of direct sun through it (blinds open)"},
+                       {"window_groups", "apertures sharing a material name"},
+                       {"groups", groups.names},
+                       {"closed_transmittance", opt.annual.closed_blind_transmittance},
+                       {"closed_applies_to", "the group's sky and sun light alike"}};
+  summary["sun"] = {{"disk_half_angle_deg", kSunHalfAngleDeg},
+                    {"position", opt.annual.sun_patch_mf > 0
+                                     ? fmt::format("centre of its Reinhart MF:{} patch (--sun-patches; not the true sun)",
+                                                   opt.annual.sun_patch_mf)
+                                     : std::string("NREL SPA at the hour's sun time (true sun)")}};
+  summary["hours"] = {{"occupied", "8:00-18:00 local standard time (EPW hours ending 9..18)"},
+                      {"en17037_daylight_hours", "the 4380 hours of highest sun altitude (half the year)"},
+                      {"dark_hours_in_occupied", "count as 0 lux"}};
+  summary["scene"] = scene_json(model.scene, engine);
+  if (model.context) summary["context"] = context_json(*model.context, opt.files.context);
+  for (const auto& g : grids) summary["grids"].push_back(annual_grid_json(g, groups.names));
+  if (!opt.hourly.empty())
+    summary["hourly_file"] = {{"format", ".npy 1.0, little-endian float32, shape (sensors, records): illuminance with "
+                                         "blinds (lux), rows in grid order, columns in weather-file order"}};
+  summary["threads"] = threads;
+  summary["run_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!opt.summary.empty()) {
+    std::ofstream f(outputs.stage(opt.summary));
+    f << summary.dump(2) << '\n';
+    if (!f) throw Error(opt.summary + ": cannot write summary");
+  }
+  outputs.commit();
+  if (opt.out.empty()) write_annual_csv(stdout, grids);
+  if (!opt.quiet) {
+    std::cerr << fmt::format("weather: {} ({} records, {} with a sky, {} floored hours by full cubature)\n", weather.path,
+                             weather.records.size(), sky.sky_hours, sky.floored_hours);
+    for (const auto& g : grids)
+      std::cerr << fmt::format("{}: {} sensors, sDA300/50% {:.1f} %, ASE1000,250 {:.1f} %, mean UDI 300-3000 {:.1f} % "
+                               "({:.2f} s)\n",
+                               g.grid->name, g.result.sensors, g.metrics.sda_300_50_percent, g.metrics.ase_1000_250_percent,
+                               g.metrics.mean_udi_autonomous_percent, g.result.coefficient_time_s + g.result.hourly_time_s);
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_annual_command(CLI::App& app) {
+  auto opt = std::make_shared<AnnualCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("annual", "A year of hourly illuminance (Perez sky and sun) and sDA, ASE, UDI, DA, EN 17037");
+  cmd->description(
+      "Computes the illuminance at every sensor for every hour of a weather file under the Perez all-weather sky\n"
+      "and the sun, through daylight coefficients: per sensor once, the moments of what it sees through the\n"
+      "apertures (exact visible regions) against a Chebyshev basis in the direction; per hour, the sky's fit in that\n"
+      "basis (its error bound beside each result), the circumsolar term and the sun's disk over the same regions.\n"
+      "Metrics: direct sun hours and ASE1000,250 (blinds open), DA300, cDA300, UDI (100/300/3000 lx) and\n"
+      "sDA300/50% with the LM-83 blinds rule over 8:00-18:00 local standard time, EN 17037's illuminance method\n"
+      "over 4380 daylight hours. Externally and internally reflected light is not computed yet: results are\n"
+      "sky + sun direct.");
+  auto& f = opt->files;
+  cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
+  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--weather", opt->weather, "EnergyPlus .epw or Radiance .wea weather file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--site", f.site, "Site JSON (as for `daylit df`); default: the weather file's location, +y true north")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--context", f.context, "GeoJSON of neighbouring buildings (as for `daylit df`); needs --site")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--context-min-angle", f.context_min_angle_deg,
+                  "Leave out context buildings smaller than this from every aperture (degrees; default 0.1)")
+      ->check(CLI::Range(0.0, 179.0));
+  cmd->add_option("--perez-clamps", opt->perez_clamps,
+                  "radiance (default for annual runs: Radiance's limits, each counted in the summary) or none (the published "
+                  "model; hours it cannot serve are left dark and counted)")
+      ->check(CLI::IsMember({"none", "radiance"}));
+  cmd->add_option("--degree", opt->annual.degree, "Degree of the sky basis in u_z (default 32)")->check(CLI::Range(0, 64));
+  cmd->add_option("--circumsolar-tolerance", opt->annual.circumsolar_tolerance,
+                  "Relative tolerance of the circumsolar cubature per region (default 1e-6)")
+      ->check(CLI::Range(1e-12, 1e-1));
+  cmd->add_option("--closed-blind-transmittance", opt->annual.closed_blind_transmittance,
+                  "Share of a window group's light that passes when its blinds are closed (default 0.2)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--sun-patches", opt->annual.sun_patch_mf,
+                  "Put the sun's disk at the centre of its Reinhart MF patch (1 = Tregenza's 145 ... 6) instead of the true "
+                  "sun, to measure what a patch-based sky does to ASE (default 0: the true sun)")
+      ->check(CLI::Range(0, 6));
+  cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
+  cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
+  cmd->add_option("--hourly", opt->hourly, "NumPy .npy file of hourly illuminance per sensor (float32; grid name appended when several)");
+  cmd->add_option("--image", opt->image, "PNG plans of per-sensor metrics and a temporal map per grid (<stem>-<grid>-{da_300,udi_autonomous,direct_sun_hours,temporal}.png)");
+  cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
+      ->check(CLI::IsMember({"exact", "float", "rational"}));
+  cmd->add_option("--pressure-hpa", opt->annual.pressure_hpa, "Local pressure for refraction (hPa; default 1013.25)")
+      ->check(CLI::Range(0.0, 5000.0));
+  cmd->add_option("--temperature-c", opt->annual.temperature_c, "Local temperature for refraction (°C; default 10)")
+      ->check(CLI::Range(-273.0, 6000.0));
+  cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
+  return [opt] { return run_annual(*opt); };
+}
+
+}  // namespace daylit::cli

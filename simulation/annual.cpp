@@ -1,0 +1,375 @@
+#include "simulation/annual.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "geometry/error.hpp"
+#include "illumination/cap_clip.hpp"
+#include "illumination/gauss_legendre.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "simulation/illuminance.hpp"
+#include "simulation/sensor_loop.hpp"
+#include "sky/hour_sun.hpp"
+#include "sky/sky_quadrature.hpp"
+
+namespace daylit {
+
+namespace {
+
+constexpr double kMinCosRadiance = 0.01;  // perezlum.cal's floor on cos θ (perez_sky.hpp, clamp 4)
+
+int year_of(const WeatherRecord& r) {
+  if (r.year > 0) return r.year;
+  return r.month == 2 && r.day == 29 ? 2024 : 2025;  // a .wea has no year: any year with the date
+}
+
+// EPW: hour ending h covers (h − 1, h]; 8:00–18:00 are h = 9..18. A .wea's time x: 8 ≤ x < 18.
+bool occupied(const WeatherFile& file, const WeatherRecord& r) {
+  if (file.format == WeatherFormat::epw) return r.hour >= 9 && r.hour <= 18;
+  return r.hour >= 8 && r.hour < 18;
+}
+
+// The clamp a line of PerezCondition::clamps_applied names, by the numbering of perez_sky.hpp.
+std::string clamp_kind(const std::string& line) {
+  const auto starts = [&](const char* prefix) { return line.rfind(prefix, 0) == 0; };
+  if (starts("sun altitude")) return "1: sun altitude lowered to 87 deg for the sky";
+  if (starts("Δ")) return "2: Delta raised to 0.2 for the luminance coefficients";
+  if (starts("b =")) return "4: gradation held at cos(theta) = 0.01 (b > 0)";
+  if (starts("negative luminance")) return "5: negative luminance set to 0 (hour by full cubature)";
+  if (starts("direct efficacy")) return "6: negative direct efficacy set to 0";
+  return line;
+}
+
+}  // namespace
+
+double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, const Vec3& n, const Vec3& sun,
+                      double direct_normal_lux) {
+  const double rho = kSunHalfAngleDeg * std::numbers::pi / 180;
+  const double visible = cap_lambert(region, sun, rho, n);
+  if (visible == 0) return 0;
+  const double sin_rho = std::sin(rho);
+  // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the disk's centre.
+  return aperture_transmittance(aperture, sun) * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
+}
+
+CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients) {
+  CircumsolarRule rule;
+  rule.regions = coefficients.regions.size();
+  for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
+    const quadrature::GaussLegendreRule gl = quadrature::gauss_legendre(order);
+    std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
+    for (const auto& [a, region] : coefficients.regions) {
+      const Aperture& aperture = scene.apertures[std::size_t(a)];
+      for (const DirectionLoop& loop : region.loops) {
+        for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+          const Vec3 A = loop[0], ab = loop[i] - A, ac = loop[i + 1] - A;
+          const double det = dot(A, cross(ab, ac));
+          if (det == 0) continue;
+          for (int p = 0; p < order; ++p) {
+            const double x = double((gl.x[std::size_t(p)] + 1) / 2), wx = double(gl.w[std::size_t(p)] / 2);
+            for (int q = 0; q < order; ++q) {
+              const double y = double((gl.x[std::size_t(q)] + 1) / 2), wy = double(gl.w[std::size_t(q)] / 2);
+              // Duffy's collapse of the fan triangle, as annual_coefficients.cpp integrates the moments.
+              const Vec3 point = A + (x * (1 - y)) * ab + (x * y) * ac;
+              const double r = norm(point);
+              const Vec3 u = (1 / r) * point;
+              nodes.push_back({u, wx * wy * x * det / (r * r * r) * dot(sensor.normal, u) * aperture_transmittance(aperture, u)});
+            }
+          }
+        }
+      }
+    }
+  }
+  return rule;
+}
+
+SkyPatchCentre reinhart_patch_centre(double azimuth_deg, double altitude_deg, int mf) {
+  if (mf < 1) throw Error("the Reinhart subdivision MF must be at least 1");
+  constexpr int kTregenzaRow[7] = {30, 30, 24, 24, 18, 12, 6};
+  const double row_height = 90.0 / (7 * mf + 0.5);
+  const int row = int(std::floor(std::max(altitude_deg, 0.0) / row_height));
+  if (row >= 7 * mf) return {0, 90};  // the polar cap
+  const int count = kTregenzaRow[row / mf] * mf;
+  const double width = 360.0 / count;
+  const double az = std::fmod(std::fmod(azimuth_deg, 360.0) + 360.0, 360.0);
+  const int patch = int(std::lround(az / width)) % count;
+  return {patch * width, (row + 0.5) * row_height};
+}
+
+AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_horizontal_lux, double direct_normal_lux,
+                       const AnnualOptions& options) {
+  AnnualHour hour;
+  hour.sky = true;
+  hour.sun = normalized(sun);
+  hour.sun_altitude_deg = std::asin(std::clamp(hour.sun.z, -1.0, 1.0)) * 180 / std::numbers::pi;
+  hour.direct_normal_lux = direct_normal_lux;
+  hour.diffuse_horizontal_lux = diffuse_horizontal_lux;
+  hour.scale = diffuse_horizontal_lux / sky.horizontal_integral();
+  const PerezCondition& c = sky.condition();
+  for (const std::string& line : c.clamps_applied)
+    if (line.rfind("negative luminance", 0) == 0) hour.floored = true;
+  hour.fit = fit_smooth_sky(c.a, c.b, c.e, sky.clamps() == PerezClamps::radiance ? kMinCosRadiance : 0.0, sky.sun(),
+                            options.degree);
+  hour.perez.emplace(sky);
+  return hour;
+}
+
+AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualOptions& options) {
+  AnnualSky out;
+  out.hours.resize(weather.records.size());
+  const double lat = site.origin().latitude_deg, lon = site.origin().longitude_deg, h = site.origin().height_m;
+  tbb::parallel_for(std::size_t(0), weather.records.size(), [&](std::size_t i) {
+    const WeatherRecord& r = weather.records[i];
+    AnnualHour& hour = out.hours[i];
+    hour.record = &r;
+    hour.occupied = occupied(weather, r);
+    const HourSun sun =
+        weather.format == WeatherFormat::epw
+            ? sun_for_hour_ending(year_of(r), r.month, r.day, int(r.hour), weather.location.time_zone_h, lat, lon, h,
+                                  options.pressure_hpa, options.temperature_c)
+            : sun_at_hour(year_of(r), r.month, r.day, r.hour, weather.location.time_zone_h, lat, lon, h,
+                          options.pressure_hpa, options.temperature_c);
+    hour.hour_ending = weather.format == WeatherFormat::epw ? int(r.hour) : int(std::floor(r.hour)) + 1;
+    hour.sun_altitude_deg = sun.position.elevation_deg;
+    if (!sun.up || !(sun.position.zenith_deg < 90)) {
+      hour.skipped = "sun down";
+      return;
+    }
+    if (!r.usable) {
+      hour.skipped = "missing direct or diffuse value";
+      return;
+    }
+    PerezHourInput in;
+    in.clamps = options.clamps;
+    if (weather.photometric) {
+      in.direct_normal_illuminance = r.direct_normal_illuminance;
+      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+    } else {
+      in.direct_normal_irradiance = r.direct_normal_irradiance;
+      in.diffuse_horizontal_irradiance = r.diffuse_horizontal_irradiance;
+      in.direct_normal_illuminance = r.direct_normal_illuminance;
+      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+    }
+    in.dew_point_c = r.dew_point_c;
+    if (r.diffuse_horizontal_irradiance == 0.0 || (weather.photometric && r.diffuse_horizontal_illuminance == 0.0)) {
+      hour.skipped = "diffuse horizontal value 0 with the sun up";
+      return;
+    }
+    hour.sun = site.model_direction(sun.position.azimuth_deg, 90 - sun.position.zenith_deg);
+    in.sun_zenith_deg = sun.position.zenith_deg;
+    in.sun = hour.sun;
+    in.distance_au = sun.position.distance_au;
+    try {
+      PerezHour p = perez_hour(in);
+      AnnualHour built = annual_hour(p.sky, hour.sun, p.diffuse_horizontal_lux, p.direct_normal_lux, options);
+      built.record = hour.record;
+      built.occupied = hour.occupied;
+      built.hour_ending = hour.hour_ending;
+      built.sun_altitude_deg = hour.sun_altitude_deg;
+      hour = std::move(built);
+      if (options.sun_patch_mf > 0) {
+        const SkyPatchCentre centre = reinhart_patch_centre(sun.position.azimuth_deg, 90 - sun.position.zenith_deg,
+                                                            options.sun_patch_mf);
+        hour.sun = site.model_direction(centre.azimuth_deg, centre.altitude_deg);
+      }
+    } catch (const Error& e) {
+      hour.skipped = std::string("refused: ") + e.what();
+    }
+  });
+  std::map<std::string, std::size_t> counts;
+  for (const AnnualHour& hour : out.hours) {
+    if (hour.sky) {
+      ++out.sky_hours;
+      out.floored_hours += hour.floored;
+      out.max_fit_error = std::max(out.max_fit_error, hour.fit.bound_factor);
+      for (const std::string& line : hour.perez->condition().clamps_applied) ++counts[clamp_kind(line)];
+    } else if (hour.skipped.rfind("refused", 0) == 0) {
+      ++out.refused_hours;
+    }
+  }
+  out.clamp_counts.assign(counts.begin(), counts.end());
+  if (out.sky_hours == 0) throw Error(weather.path + ": no hour with the sun up and a usable sky");
+  return out;
+}
+
+HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
+                                 const AnnualHour& hour, const AnnualOptions& options, const CircumsolarRule* rule) {
+  HourIlluminance out;
+  if (!hour.sky) return out;
+  const std::size_t size = hour.fit.coefficients.size(), groups = coefficients.lambert.size();
+  const PerezSky& sky = *hour.perez;
+  const PerezCondition& c = sky.condition();
+  double lambert = 0, lambert_max = 0, abs_coefficients = 0;
+  for (double l : coefficients.lambert) {
+    lambert += l;
+    lambert_max = std::max(lambert_max, l);
+  }
+  for (double cj : hour.fit.coefficients) abs_coefficients += std::abs(cj);
+  double value = 0, error = 0;
+  if (!hour.floored) {
+    for (std::size_t g = 0; g < groups; ++g)
+      for (std::size_t j = 0; j < size; ++j) value += hour.fit.coefficients[j] * coefficients.sky_direct[g * size + j];
+    error += hour.fit.bound_over(coefficients.min_uz, coefficients.max_uz) * lambert + coefficients.moment_error * lambert_max * abs_coefficients;
+  }
+  const double min_cos = sky.clamps() == PerezClamps::radiance ? kMinCosRadiance : 0.0;
+  const auto circumsolar = [&](const Vec3& u) {
+    if (!(u.z > 0)) return 0.0;
+    const double t = std::max(u.z, min_cos);
+    const double gamma = std::atan2(norm(cross(sky.sun(), u)), dot(sky.sun(), u));
+    return (1 + c.a * std::exp(c.b / t)) * c.c * std::exp(c.d * gamma);
+  };
+  // The circumsolar term by the sensor's fixed rules where they agree (the sun well away from every
+  // region, so the indicatrix's kink is not inside: checked exactly with a cap of kCircumsolarMargin
+  // about the sky's sun), else by adaptive cubature split at the sun.
+  bool fixed = rule != nullptr && !hour.floored && c.c != 0 && rule->regions == coefficients.regions.size();
+  if (fixed) {
+    for (const auto& [a, region] : coefficients.regions)
+      if (cap_lambert(region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
+  }
+  if (fixed) {
+    double high = 0, low = 0;
+    for (const CircumsolarRule::Node& node : rule->high) high += node.weight * circumsolar(node.u);
+    for (const CircumsolarRule::Node& node : rule->low) low += node.weight * circumsolar(node.u);
+    if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high)) {
+      value += high;
+      error += std::abs(high - low);
+    } else {
+      fixed = false;
+    }
+  }
+  for (const auto& [a, region] : coefficients.regions) {
+    const Aperture& aperture = scene.apertures[std::size_t(a)];
+    if (!fixed) {
+      // T(μ) about the pane's normal, found once per region rather than per evaluation; an open
+      // aperture's constant τ scales the result instead.
+      std::function<double(const Vec3&)> transmittance;
+      double scale = aperture.transmittance;
+      if (!aperture.angular_transmittance.empty()) {
+        const Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
+        transmittance = [&aperture, pane](const Vec3& u) {
+          return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
+        };
+        scale = 1;
+      }
+      const QuadratureResult q =
+          hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
+                                                   region, sensor.normal, options.circumsolar_tolerance, transmittance)
+          : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
+                                                 options.circumsolar_tolerance, transmittance)
+                     : QuadratureResult{0, 0, 0};
+      value += scale * q.value;
+      error += scale * q.error_estimate;
+      out.adaptive = true;
+    }
+    if (hour.direct_normal_lux > 0)
+      out.sun_lux += direct_sun_lux(aperture, region, sensor.normal, hour.sun, hour.direct_normal_lux);
+  }
+  out.sky_lux = hour.scale * value;
+  out.bound_lux = hour.scale * error;
+  return out;
+}
+
+std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, std::size_t sensors, std::size_t groups,
+                                      double threshold_lux, double share) {
+  std::vector<std::uint8_t> closed(groups, 0);
+  for (std::size_t g = 0; g < groups; ++g) {
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i < sensors; ++i) lit += sun_by_group[i * groups + g] >= threshold_lux;
+    closed[g] = double(lit) > share * double(sensors);
+  }
+  return closed;
+}
+
+AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
+                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const WindowGroups groups = window_groups(scene);
+  AnnualGridResult r;
+  r.sensors = grid.sensors.size();
+  r.hours = sky.hours.size();
+  r.groups = groups.names.size();
+  const std::vector<SensorCoefficients> coefficients =
+      annual_coefficients(engine, scene, grid, groups, options.degree, r.counters);
+  for (const auto& c : coefficients) r.max_moment_error = std::max(r.max_moment_error, c.moment_error);
+  const auto t1 = std::chrono::steady_clock::now();
+  r.coefficient_time_s = std::chrono::duration<double>(t1 - t0).count();
+
+  const std::size_t n = r.sensors, hours = r.hours, ng = r.groups;
+  // Pass 1: the direct sun per group, blinds open ([hour][sensor × group]), for the blinds rule.
+  std::vector<float> sun(hours * n * ng, 0.0f);
+  for_each_sensor<int>(n, 16, {}, [&](std::size_t i, int&) {
+    const Sensor& s = grid.sensors[i];
+    for (std::size_t h = 0; h < hours; ++h) {
+      const AnnualHour& hour = sky.hours[h];
+      if (!hour.sky || hour.direct_normal_lux <= 0) continue;
+      for (const auto& [a, region] : coefficients[i].regions)
+        sun[(h * n + i) * ng + std::size_t(groups.group_of_aperture[std::size_t(a)])] +=
+            float(direct_sun_lux(scene.apertures[std::size_t(a)], region, s.normal, hour.sun, hour.direct_normal_lux));
+    }
+  });
+  r.blinds_closed.assign(hours * ng, 0);
+  r.direct_sun.assign(n * hours, 0.0f);
+  for (std::size_t h = 0; h < hours; ++h) {
+    const std::vector<float> slice(sun.begin() + std::ptrdiff_t(h * n * ng), sun.begin() + std::ptrdiff_t((h + 1) * n * ng));
+    const auto closed = blinds_rule(slice, n, ng, options.blinds_threshold_lux, options.blinds_sensor_share);
+    std::copy(closed.begin(), closed.end(), r.blinds_closed.begin() + std::ptrdiff_t(h * ng));
+    for (std::size_t i = 0; i < n; ++i) {
+      float total = 0;
+      for (std::size_t g = 0; g < ng; ++g) total += slice[i * ng + g];
+      r.direct_sun[i * hours + h] = total;
+    }
+  }
+  // Pass 2: sky and sun per group with the blinds, per sensor.
+  r.illuminance.assign(n * hours, 0.0f);
+  r.max_bound_lux.assign(n, 0.0);
+  r.max_bound_relative.assign(n, 0.0);
+  const auto adaptive_counts = for_each_sensor<std::size_t>(n, 4, progress, [&](std::size_t i, std::size_t& adaptive) {
+    const Sensor& s = grid.sensors[i];
+    const SensorCoefficients& c = coefficients[i];
+    const std::size_t size = std::size_t(annual_basis_size(options.degree));
+    // The group's own coefficients and regions: the hour through group g alone.
+    std::vector<SensorCoefficients> parts(ng);
+    std::vector<CircumsolarRule> rules;
+    for (std::size_t g = 0; g < ng; ++g) {
+      SensorCoefficients& part = parts[g];
+      part.sky_direct.assign(c.sky_direct.begin() + std::ptrdiff_t(g * size), c.sky_direct.begin() + std::ptrdiff_t((g + 1) * size));
+      part.lambert = {c.lambert[g]};
+      part.moment_error = c.moment_error;
+      part.min_uz = c.min_uz;
+      part.max_uz = c.max_uz;
+      for (const auto& [a, region] : c.regions)
+        if (std::size_t(groups.group_of_aperture[std::size_t(a)]) == g) part.regions.emplace_back(a, region);
+      rules.push_back(circumsolar_rule(scene, s, part));
+    }
+    for (std::size_t h = 0; h < hours; ++h) {
+      const AnnualHour& hour = sky.hours[h];
+      if (!hour.sky) continue;
+      double total = 0, bound = 0;
+      for (std::size_t g = 0; g < ng; ++g) {
+        const SensorCoefficients& part = parts[g];
+        const HourIlluminance e = hour_illuminance(scene, s, part, hour, options, &rules[g]);
+        adaptive += e.adaptive;
+        const double factor = r.blinds_closed[h * ng + g] ? options.closed_blind_transmittance : 1.0;
+        total += factor * (e.sky_lux + e.sun_lux);
+        bound += factor * e.bound_lux;
+      }
+      r.illuminance[i * hours + h] = float(total);
+      if (bound > r.max_bound_lux[i]) r.max_bound_lux[i] = bound;
+      if (total > 0) r.max_bound_relative[i] = std::max(r.max_bound_relative[i], bound / total);
+    }
+  });
+  for (std::size_t a : adaptive_counts) r.adaptive_circumsolar += a;
+  r.hourly_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  return r;
+}
+
+}  // namespace daylit

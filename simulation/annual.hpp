@@ -1,0 +1,159 @@
+#pragma once
+// Climate-based annual illuminance (DESIGN.md §5; issue 14, deliverables 3–4): every hour of a
+// weather file, the Perez sky and the sun, on every sensor of a grid, through the daylight
+// coefficients of annual_coefficients.hpp.
+//
+// Per hour and sensor: E_sky = (E_dh / N) [Σ_j c_j B_j + C], with c_j the hour's smooth-part
+// coefficients (fit_smooth_sky), B_j the sensor's moments, C the circumsolar term
+// c ∫_A G(u_z) e^{dγ} (n·u) T dσ over the sensor's stored regions by adaptive cubature split at
+// the sun (sky_quadrature.hpp; its error estimate counts in the bound), and N the sky's own
+// normalisation (PerezSky). Hours in which Radiance's clamp 5 (negative luminance set to 0)
+// acted are not a sum of basis terms: they are integrated by cubature of the whole clamped
+// luminance over each region, and counted. The sun: its disk cut exactly by each region
+// (cap_clip.hpp), as `daylit illuminance` does. Reflected light is not included (see
+// SensorCoefficients::sky_direct): results are sky + sun direct.
+//
+// Blinds (IES LM-83-12, §2.2.6 as the issue words it): in an occupied hour, a window group's
+// blinds close when more than `blinds_sensor_share` of the grid's sensors get at least
+// `blinds_threshold_lux` of direct sun through that group alone (blinds open); a closed group
+// passes `closed_blind_transmittance` of its sky and sun light. The illuminance with blinds is
+// what DA, cDA, UDI, sDA and EN 17037 use; ASE and direct_sun_hours use the direct sun with
+// blinds open.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simulation/annual_coefficients.hpp"
+#include "sky/perez_sky.hpp"
+#include "sky/site.hpp"
+#include "sky/weather_file.hpp"
+
+namespace daylit {
+
+struct AnnualOptions {
+  int degree = 32;                            // of the gradation's Chebyshev fit (test_perez_sky: the convergence table)
+  PerezClamps clamps = PerezClamps::radiance;  // see below: the annual default
+  double circumsolar_tolerance = 1e-6;        // relative, per region (spherical_quadrature.hpp)
+  double closed_blind_transmittance = 0.2;
+  double blinds_threshold_lux = 1000, blinds_sensor_share = 0.02;
+  double pressure_hpa = 1013.25, temperature_c = 10;
+  // 0: the sun's disk at the true sun (exact). MF ≥ 1: at the centre of the Reinhart MF patch
+  // that holds the sun (reinhart_patch_centre), as patch-based tools place it, to measure what
+  // the sky's discretisation alone does to ASE, direct sun hours and the blinds. The sky is exact
+  // either way.
+  int sun_patch_mf = 0;
+};
+
+// The centre (azimuth clockwise from true north, altitude; degrees) of the Reinhart patch of
+// subdivision MF (MF = 1: Tregenza's 145 patches) that holds the direction (azimuth, altitude):
+// rows of 90°/(7 MF + 0.5) in altitude with {30, 30, 24, 24, 18, 12, 6}·MF patches (each of
+// Tregenza's rows split MF times), the first patch of every row centred on true north, and a
+// polar cap of half a row (Reinhart and Walkenhorst 2001; Radiance's reinhart.cal, whose
+// azimuth origin may differ: a turn of the patches changes the count by the sun's position
+// within its patch, not the patch size).
+struct SkyPatchCentre {
+  double azimuth_deg, altitude_deg;
+};
+SkyPatchCentre reinhart_patch_centre(double azimuth_deg, double altitude_deg, int mf);
+
+// One record of the weather file, as the annual run takes it.
+struct AnnualHour {
+  const WeatherRecord* record = nullptr;
+  int hour_ending = 0;          // EPW hour (1–24); for a .wea the hour that holds its time
+  bool occupied = false;        // 8:00–18:00 local standard time (LEED v4 / LM-83: 3,650 h a year)
+  double sun_altitude_deg = -90;  // SPA, at the hour's sun time (EN 17037's daylight hours take the highest)
+  bool sky = false;             // a Perez sky was built (sun up, usable record, E_dh > 0)
+  std::string skipped;          // why not, when not ("sun down" and others)
+  Vec3 sun{0, 0, 1};            // the true sun, model frame
+  double direct_normal_lux = 0, diffuse_horizontal_lux = 0;
+  double scale = 0;             // E_dh / N (lux per unit of lv·sr)
+  std::optional<PerezSky> perez;
+  SmoothSkyFit fit;
+  bool floored = false;         // clamp 5 acted: the whole luminance by cubature
+};
+
+// One hour from its sky (which carries its own clamps), the true sun (model frame, unit) and the
+// hour's diffuse horizontal and direct normal illuminances (lux).
+AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_horizontal_lux, double direct_normal_lux,
+                       const AnnualOptions& options);
+
+struct AnnualSky {
+  std::vector<AnnualHour> hours;  // one per record, in file order
+  std::size_t sky_hours = 0, floored_hours = 0, refused_hours = 0;
+  std::vector<std::pair<std::string, std::size_t>> clamp_counts;  // clamp line → hours it acted in
+  double max_fit_error = 0;       // the largest ε_G (1 + |e|) over the hours
+};
+
+// The hours of a weather file for a site (the model frame comes from it). Hours the published
+// model cannot serve under PerezClamps::none are skipped and counted (refused_hours), never
+// silently. Throws daylit::Error for a file without any usable sun-up hour.
+AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualOptions& options);
+
+// The hourly results of one grid.
+struct AnnualGridResult {
+  std::size_t sensors = 0, hours = 0;
+  // [sensor × hours], row-major by sensor: illuminance with blinds (sky + sun direct), lux.
+  std::vector<float> illuminance;
+  // [sensor × hours]: direct sun alone, blinds open (ASE, direct_sun_hours).
+  std::vector<float> direct_sun;
+  // Per sensor: the largest per-hour bound on |computed − true| sky illuminance (lux), and the
+  // hour it occurred in; the bound is the fit's ε_G(1 + |e|)·lambert + the moments' estimate +
+  // the circumsolar (or floored-hour) cubature's estimate, all times E_dh/N.
+  std::vector<double> max_bound_lux;
+  std::vector<double> max_bound_relative;  // that bound over the hour's illuminance (where > 0)
+  // [hours × groups]: whether the group's blinds were closed.
+  std::vector<std::uint8_t> blinds_closed;
+  std::size_t groups = 0;
+  double max_moment_error = 0;
+  std::size_t adaptive_circumsolar = 0;  // sensor-hour-groups whose circumsolar term needed adaptive cubature
+  VisibilityCounters counters;
+  double coefficient_time_s = 0, hourly_time_s = 0;
+};
+
+AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
+                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress = {});
+
+// One sensor's sky illuminance in one hour through the given coefficients (all groups, no blinds),
+// and the bound on its error: the path annual_grid takes, for tests.
+struct HourIlluminance {
+  double sky_lux = 0, sun_lux = 0, bound_lux = 0;
+  bool adaptive = false;   // the circumsolar term (or a floored hour) went to adaptive cubature
+};
+
+// Fixed product Gauss rules (kCircumsolarOrderHigh² and kCircumsolarOrderLow² points per fan
+// triangle, as the moments) over a sensor's regions, with (n·u) T(u) in the weights: built once
+// per sensor, they integrate the hour's circumsolar term c·G(u_z)·e^{dγ} as two sums. An hour takes
+// the high rule's sum when the two agree to the circumsolar tolerance (their difference is its
+// error estimate) and the sky's sun is more than kCircumsolarMargin from every region (so the kink
+// of e^{dγ} at the sun is not near the nodes); otherwise adaptive cubature split at the sun.
+// (A product rule in the sun's frame — a fan from the sun, Duffy-collapsed there — was tried: it
+// needs order 20 against 14 to reach 1e-6 on test_perez_sky's window and cost more CPU than the
+// adaptive cubature over the Chicago year, so it is not used.)
+inline constexpr int kCircumsolarOrderHigh = 12, kCircumsolarOrderLow = 8;
+inline constexpr double kCircumsolarMargin = 5 * 3.14159265358979323846 / 180;
+struct CircumsolarRule {
+  struct Node {
+    Vec3 u;
+    double weight;
+  };
+  std::vector<Node> high, low;
+  std::size_t regions = 0;
+};
+CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients);
+
+HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
+                                 const AnnualHour& hour, const AnnualOptions& options,
+                                 const CircumsolarRule* rule = nullptr);
+
+// Direct sun (lux) at a sensor through one aperture's visible region: L_s ∫_{disk ∩ A} (n·u) dσ × T(sun).
+double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, const Vec3& n, const Vec3& sun,
+                      double direct_normal_lux);
+
+// The LM-83 rule for one hour: closed[g] when more than `share` of the sensors get ≥ threshold
+// lux from group g's direct sun alone. sun_by_group is [sensor × groups].
+std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, std::size_t sensors, std::size_t groups,
+                                      double threshold_lux, double share);
+
+}  // namespace daylit

@@ -1,0 +1,231 @@
+#include "simulation/annual_coefficients.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "geometry/error.hpp"
+#include "illumination/gauss_legendre.hpp"
+#include "materials/glass_transmittance.hpp"
+#include "simulation/sensor_loop.hpp"
+
+namespace daylit {
+
+namespace {
+
+// The n-point Gauss–Legendre rule mapped to [0, 1].
+struct UnitRule {
+  std::vector<double> x, w;
+};
+UnitRule unit_rule(int n) {
+  const quadrature::GaussLegendreRule r = quadrature::gauss_legendre(n);
+  UnitRule u;
+  for (int i = 0; i < n; ++i) {
+    u.x.push_back(double((r.x[std::size_t(i)] + 1) / 2));
+    u.w.push_back(double(r.w[std::size_t(i)] / 2));
+  }
+  return u;
+}
+
+// φ_j(u) for every j, into `out` (size annual_basis_size(degree)).
+void evaluate_basis(const Vec3& u, int degree, double* out) {
+  const double t = 2 * u.z - 1;
+  const double family[kAnnualBasisFamilies] = {1, u.x * u.x, u.y * u.y, u.z * u.z, u.x * u.y, u.x * u.z, u.y * u.z};
+  double t0 = 1, t1 = t;
+  for (int k = 0; k <= degree; ++k) {
+    const double tk = k == 0 ? 1 : k == 1 ? t : 2 * t * t1 - t0;
+    if (k >= 2) {
+      t0 = t1;
+      t1 = tk;
+    }
+    for (int f = 0; f < kAnnualBasisFamilies; ++f) out[annual_basis_index(f, k, degree)] = family[f] * tk;
+  }
+}
+
+// Σ over the region of φ_j(u) T(u) (n·u) dσ and of T(u)(n·u) dσ, by the n×n collapsed product rule
+// on every fan triangle (signed, so holes and non-convex loops add up as in spherical_quadrature).
+void integrate_basis(const SphericalRegion& region, const Vec3& n, const Aperture& aperture, int degree,
+                     const UnitRule& rule, double* moments, double& lambert) {
+  std::vector<double> phi(std::size_t(annual_basis_size(degree)));
+  const int size = annual_basis_size(degree);
+  for (const DirectionLoop& loop : region.loops) {
+    if (loop.size() < 3) continue;
+    const Vec3& a = loop[0];
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+      const Vec3 ab = loop[i] - a, ac = loop[i + 1] - a;
+      const double det = dot(a, cross(ab, ac));
+      if (det == 0) continue;
+      for (std::size_t p = 0; p < rule.x.size(); ++p) {
+        const double x = rule.x[p];
+        for (std::size_t q = 0; q < rule.x.size(); ++q) {
+          const double y = rule.x[q];
+          // Duffy's collapse: α = x(1 − y), β = x y, dα dβ = x dx dy.
+          const Vec3 point = a + (x * (1 - y)) * ab + (x * y) * ac;
+          const double r = norm(point);
+          const Vec3 u = (1 / r) * point;
+          const double weight = rule.w[p] * rule.w[q] * x * det / (r * r * r) * dot(n, u) * aperture_transmittance(aperture, u);
+          lambert += weight;
+          evaluate_basis(u, degree, phi.data());
+          for (int j = 0; j < size; ++j) moments[j] += weight * phi[std::size_t(j)];
+        }
+      }
+    }
+  }
+}
+
+// Extend [lo, hi] by the range of z·u over the region's arcs: z·u(t) = A cos t + B sin t on
+// u(t) = a cos t + q sin t (q ⊥ a in the arc's plane), extreme at its ends or where tan t = B/A.
+void extend_uz_range(const SphericalRegion& region, double& lo, double& hi) {
+  for (const DirectionLoop& loop : region.loops) {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec3 a = normalized(loop[i]), b = normalized(loop[(i + 1) % loop.size()]);
+      lo = std::min(lo, a.z);
+      hi = std::max(hi, a.z);
+      const Vec3 m = cross(a, b);
+      if (norm(m) == 0) continue;
+      const Vec3 q = normalized(cross(m, a));
+      const double theta = std::atan2(norm(m), dot(a, b));
+      const double t = std::atan2(q.z, a.z);  // the top of the great circle; t + π its bottom
+      for (double tt : {t, t + std::numbers::pi, t - std::numbers::pi}) {
+        if (tt > 0 && tt < theta) {
+          const double z = a.z * std::cos(tt) + q.z * std::sin(tt);
+          lo = std::min(lo, z);
+          hi = std::max(hi, z);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+double aperture_transmittance(const Aperture& aperture, const Vec3& u) {
+  if (aperture.angular_transmittance.empty()) return aperture.transmittance;
+  const Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
+  return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
+}
+
+WindowGroups window_groups(const Scene& scene) {
+  WindowGroups g;
+  std::map<std::string, int> index;
+  for (const Aperture& a : scene.apertures) {
+    const auto [it, added] = index.emplace(a.polygon.material, int(g.names.size()));
+    if (added) g.names.push_back(a.polygon.material);
+    g.group_of_aperture.push_back(it->second);
+  }
+  return g;
+}
+
+SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
+                                       const WindowGroups& groups, int degree, VisibilityCounters& counters) {
+  static const UnitRule low = unit_rule(kOrderLow), high = unit_rule(kOrderHigh);
+  const std::size_t size = std::size_t(annual_basis_size(degree)), group_count = groups.names.size();
+  SensorCoefficients c;
+  c.sky_direct.assign(group_count * size, 0.0);
+  c.lambert.assign(group_count, 0.0);
+  std::vector<double> coarse(group_count * size, 0.0), coarse_lambert(group_count, 0.0);
+  for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
+    SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
+    if (region.empty()) continue;
+    const std::size_t g = std::size_t(groups.group_of_aperture[a]);
+    integrate_basis(region, sensor.normal, scene.apertures[a], degree, high, &c.sky_direct[g * size], c.lambert[g]);
+    integrate_basis(region, sensor.normal, scene.apertures[a], degree, low, &coarse[g * size], coarse_lambert[g]);
+    extend_uz_range(region, c.min_uz, c.max_uz);
+    c.regions.emplace_back(int(a), std::move(region));
+  }
+  const double scale = c.lambert.empty() ? 0 : *std::max_element(c.lambert.begin(), c.lambert.end());
+  double worst = 0;
+  for (std::size_t j = 0; j < c.sky_direct.size(); ++j) worst = std::max(worst, std::abs(c.sky_direct[j] - coarse[j]));
+  c.moment_error = scale > 0 ? worst / scale : 0;
+  return c;
+}
+
+std::vector<SensorCoefficients> annual_coefficients(const VisibilityEngine& engine, const Scene& scene,
+                                                    const SensorGrid& grid, const WindowGroups& groups, int degree,
+                                                    VisibilityCounters& counters, const ProgressCallback& progress) {
+  std::vector<SensorCoefficients> out(grid.sensors.size());
+  const auto locals = for_each_sensor<VisibilityCounters>(grid.sensors.size(), 16, progress,
+                                                          [&](std::size_t i, VisibilityCounters& local) {
+                                                            out[i] = sensor_coefficients(engine, scene, grid.sensors[i],
+                                                                                         groups, degree, local);
+                                                          });
+  for (const auto& l : locals) counters += l;
+  return out;
+}
+
+SmoothSkyFit fit_smooth_sky(double a, double b, double e, double min_cos_theta, const Vec3& sun, int degree) {
+  if (degree < 0 || degree > 64) throw Error("the basis degree must lie in 0..64");
+  const auto gradation = [&](double t) {
+    const double c = std::max(t, min_cos_theta);
+    return c > 0 ? 1 + a * std::exp(b / c) : (b < 0 ? 1.0 : 1 + a);  // the limit t → 0⁺ for b ≤ 0
+  };
+  // Chebyshev interpolation at the D + 1 Chebyshev points of the first kind on [0, 1]
+  // (Trefethen, Approximation Theory and Approximation Practice, ch. 4): near-minimax, and its
+  // coefficients come from a discrete cosine sum.
+  const int n = degree + 1;
+  std::vector<double> values(static_cast<std::size_t>(n)), g(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    const double theta = std::numbers::pi * (i + 0.5) / n;
+    values[std::size_t(i)] = gradation((std::cos(theta) + 1) / 2);
+  }
+  for (int k = 0; k < n; ++k) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += values[std::size_t(i)] * std::cos(k * std::numbers::pi * (i + 0.5) / n);
+    g[std::size_t(k)] = (k == 0 ? 1.0 : 2.0) * sum / n;
+  }
+  SmoothSkyFit fit;
+  fit.coefficients.assign(std::size_t(annual_basis_size(degree)), 0.0);
+  const Vec3 s = normalized(sun);
+  const double family[kAnnualBasisFamilies] = {1, e * s.x * s.x, e * s.y * s.y, e * s.z * s.z,
+                                               2 * e * s.x * s.y, 2 * e * s.x * s.z, 2 * e * s.y * s.z};
+  for (int k = 0; k <= degree; ++k)
+    for (int f = 0; f < kAnnualBasisFamilies; ++f)
+      fit.coefficients[std::size_t(annual_basis_index(f, k, degree))] = family[f] * g[std::size_t(k)];
+  // The sampled maximum error of p: an even grid, and the clamp's kink where there is one.
+  const auto p = [&](double t) {
+    const double x = 2 * t - 1;
+    double t0 = 1, t1 = x, sum = g[0] + (n > 1 ? g[1] * x : 0);
+    for (int k = 2; k < n; ++k) {
+      const double t2 = 2 * x * t1 - t0;
+      sum += g[std::size_t(k)] * t2;
+      t0 = t1;
+      t1 = t2;
+    }
+    return sum;
+  };
+  fit.bound_by_bin.assign(kFitErrorBins, 0.0);
+  const auto sample = [&](double t) {
+    const double error = std::abs(p(t) - gradation(t));
+    const int bin = std::min(kFitErrorBins - 1, int(t * kFitErrorBins));
+    fit.bound_by_bin[std::size_t(bin)] = std::max(fit.bound_by_bin[std::size_t(bin)], error);
+    // A bin's edge belongs to both bins that meet there.
+    if (bin > 0 && t * kFitErrorBins == bin)
+      fit.bound_by_bin[std::size_t(bin - 1)] = std::max(fit.bound_by_bin[std::size_t(bin - 1)], error);
+    fit.gradation_max_error = std::max(fit.gradation_max_error, error);
+  };
+  for (int i = 0; i <= 64 * kFitErrorBins; ++i) sample(double(i) / (64 * kFitErrorBins));
+  if (min_cos_theta > 0) sample(min_cos_theta);
+  for (double& b : fit.bound_by_bin) b *= 1 + std::abs(e);
+  fit.bound_factor = fit.gradation_max_error * (1 + std::abs(e));
+  return fit;
+}
+
+double SmoothSkyFit::bound_over(double lo, double hi) const noexcept {
+  if (bound_by_bin.empty() || hi < lo) return bound_factor;
+  const int first = std::clamp(int(lo * kFitErrorBins), 0, kFitErrorBins - 1);
+  const int last = std::clamp(int(hi * kFitErrorBins), 0, kFitErrorBins - 1);
+  double worst = 0;
+  for (int b = first; b <= last; ++b) worst = std::max(worst, bound_by_bin[std::size_t(b)]);
+  return worst;
+}
+
+double evaluate_smooth_fit(const SmoothSkyFit& fit, const Vec3& u, int degree) {
+  std::vector<double> phi(std::size_t(annual_basis_size(degree)));
+  evaluate_basis(u, degree, phi.data());
+  double sum = 0;
+  for (std::size_t j = 0; j < phi.size(); ++j) sum += fit.coefficients[j] * phi[j];
+  return sum;
+}
+
+}  // namespace daylit

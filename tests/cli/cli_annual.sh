@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# `daylit annual` on three days of the Chicago TMY3 (EPW and .wea): the CSV keeps df's first
+# columns and adds the metrics, the summary has sDA, ASE, the pass levels, the clamp counts and
+# says that reflections are not included, the hourly .npy has NumPy's header and the right size;
+# a bad weather file fails with file:line, exit 1 and no output.
+set -u
+daylit=$(realpath "$1")
+samples=$(realpath "$2")
+data=$(realpath "$3")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+head -12 "$samples/office/grid.pts" > "$work/grid.pts"
+office=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$work/grid.pts" --quiet
+        --degree 16 --threads 2)
+epw="$data/chicago-ohare-tmy3-jan1-3.epw"
+
+"$daylit" annual "${office[@]}" --weather "$epw" --out "$work/a.csv" --summary "$work/a.json" --hourly "$work/a.npy" \
+  || fail "annual with an EPW"
+head -1 "$work/a.csv" | grep -q '^grid,index,x,y,z,dx,dy,dz,direct_sun_hours,da_300_percent,cda_300_percent,udi_fell_short_percent,udi_supplementary_percent,udi_autonomous_percent,udi_exceeded_percent,' \
+  || fail "CSV columns"
+[ "$(wc -l < "$work/a.csv")" -eq 13 ] || fail "CSV rows"
+python3 - "$work/a.json" "$work/a.npy" <<'PY' || fail "EPW summary and .npy"
+import json, struct, sys
+s = json.load(open(sys.argv[1]))
+g = s["grids"][0]
+for key in ("sda_300_50_percent", "ase_1000_250_percent", "leed_v4_1", "en17037_illuminance_method", "per_hour_bound"):
+    assert key in g, key
+assert g["occupied_hours"] == 30, g["occupied_hours"]           # 3 days × 10 h
+assert s["sky"]["records"] == 72 and s["sky"]["clamps"] == "radiance"
+assert "sun down" in s["sky"]["hours_without_sky"]
+assert "not computed yet" in s["components"]["left_out"]["externally_reflected"]
+assert s["components"]["computed"] == ["sky_direct", "sun_direct"]
+raw = open(sys.argv[2], "rb").read()
+assert raw[:6] == b"\x93NUMPY" and raw[6:8] == b"\x01\x00"
+n = struct.unpack("<H", raw[8:10])[0]
+header = raw[10:10 + n].decode("ascii")
+assert header.startswith("{'descr': '<f4', 'fortran_order': False, 'shape': (12, 72), }"), header
+assert (10 + n) % 64 == 0
+values = struct.unpack("<%df" % (12 * 72), raw[10 + n:])
+assert len(raw) == 10 + n + 4 * 12 * 72
+assert max(values) > 100 and min(values) == 0.0                  # night hours are dark
+PY
+
+# The same three days from the .wea: the same hours with a sky.
+"$daylit" annual "${office[@]}" --weather "$data/chicago-ohare-tmy3-jan1-3.wea" --out "$work/w.csv" --summary "$work/w.json" \
+  || fail "annual with a .wea"
+
+# --perez-clamps none: hours the published model cannot serve are counted, never silently.
+"$daylit" annual "${office[@]}" --weather "$epw" --perez-clamps none --summary "$work/n.json" --out "$work/n.csv" \
+  || fail "annual with --perez-clamps none"
+python3 - "$work/n.json" <<'PY' || fail "clamps none summary"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["sky"]["clamps"] == "none" and "hours_without_sky" in s["sky"]
+PY
+
+# Bad input: file:line, exit 1, no output.
+awk -F, 'NR == 15 { $15 = "lots" } { print }' OFS=, "$epw" > "$work/bad.epw"
+rm -f "$work/bad.csv" "$work/bad.json" "$work/bad.npy"
+"$daylit" annual "${office[@]}" --weather "$work/bad.epw" --out "$work/bad.csv" --summary "$work/bad.json" \
+  --hourly "$work/bad.npy" 2> "$work/err"
+rc=$?
+[ "$rc" -eq 1 ] || fail "bad weather: exit $rc, not 1"
+grep -q "bad.epw:15:" "$work/err" || fail "bad weather: no file:line in: $(cat "$work/err")"
+[ ! -e "$work/bad.csv" ] && [ ! -e "$work/bad.json" ] && [ ! -e "$work/bad.npy" ] || fail "bad weather: partial output"
+printf 'not a weather file\n' > "$work/x.txt"
+"$daylit" annual "${office[@]}" --weather "$work/x.txt" --out "$work/bad.csv" 2> "$work/err"
+[ $? -eq 1 ] || fail "unknown extension: exit not 1"
+[ ! -e "$work/bad.csv" ] || fail "unknown extension: partial output"
+
+[ "$failures" -eq 0 ] && echo "all annual CLI checks passed"
+exit "$failures"
