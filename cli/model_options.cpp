@@ -17,6 +17,13 @@ void add_model_options(CLI::App& command, ModelFiles& files) {
                      "Uniform visible transmittance (0 to 1) for apertures of Radiance's BSDF/aBSDF type, whose angular "
                      "data daylit does not read (without it such an aperture is an error)")
       ->check(CLI::Range(0.0, 1.0));
+  // Sensors come from --grid or from the model: without either the command line is incomplete,
+  // a usage error (exit code 2, README "Exit codes"), found when parsing ends.
+  CLI::App* app = &command;
+  command.parse_complete_callback([app] {
+    if (app->count("--grid") == 0 && app->count("--model") == 0)
+      throw CLI::RequiredError("--grid or --model (the sensors come from a grid file or from the model)");
+  });
 }
 
 }  // namespace daylit::cli

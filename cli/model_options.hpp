@@ -12,6 +12,8 @@ struct ModelFiles;
 
 namespace daylit::cli {
 
+// Adds --model and --bsdf-transmittance to `command`, which must already have --grid, and requires
+// one of --grid and --model when parsing completes.
 void add_model_options(CLI::App& command, ModelFiles& files);
 
 }  // namespace daylit::cli

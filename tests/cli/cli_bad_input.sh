@@ -50,6 +50,12 @@ expect_failure "missing file" "missing.rad" --apertures missing.rad --grid grid.
 : > empty.pts
 expect_failure "empty grid" "empty.pts" --apertures window.rad --grid empty.pts --out out.csv
 expect_failure "no apertures" "no apertures" --scene window.rad --grid grid.pts --out out.csv
+# No sensors at all (neither --grid nor --model) is a command line that cannot be run: exit 2.
+"$daylit" df --apertures window.rad --out out.csv --quiet 2> stderr.txt
+status=$?
+[ "$status" -eq 2 ] || { echo "FAIL no --grid or --model: exit status $status, not 2"; failures=$((failures + 1)); }
+grep -q -- "--grid or --model" stderr.txt || { echo "FAIL no --grid or --model: stderr"; cat stderr.txt; failures=$((failures + 1)); }
+[ ! -e out.csv ] || { echo "FAIL no --grid or --model: output left behind"; failures=$((failures + 1)); }
 printf 'void polygon bow 0 0 12 0 0 1 2 0 2.5 2 0 1 0 0 2\n' > bowtie.rad
 expect_failure "self-intersecting polygon" "bowtie.rad:1" --apertures bowtie.rad --grid grid.pts --out out.csv
 expect_failure "output directory missing" "no-such-dir" --apertures window.rad --grid grid.pts --out no-such-dir/x.csv
