@@ -135,16 +135,9 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
     p.sun.zenith_deg = w.sun.position.zenith_deg;
     p.sun.azimuth_deg = w.sun.position.azimuth_deg;
     p.sun.distance_au = w.sun.position.distance_au;
-    if (file.photometric) {
-      in.direct_normal_illuminance = r.direct_normal_illuminance;
-      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
-    } else {
-      in.direct_normal_irradiance = r.direct_normal_irradiance;
-      in.diffuse_horizontal_irradiance = r.diffuse_horizontal_irradiance;
-      in.direct_normal_illuminance = r.direct_normal_illuminance;
-      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
-    }
-    in.dew_point_c = r.dew_point_c;
+    const PerezClamps clamps = in.clamps;
+    in = perez_hour_input(r, file.photometric);
+    in.clamps = clamps;
     if (r.diffuse_horizontal_irradiance == 0.0 || (file.photometric && r.diffuse_horizontal_illuminance == 0.0))
       throw Error(fmt::format("{}:{}: the diffuse horizontal value of this hour is 0 with the sun up for {:.0f} min of it: "
                               "there is no sky to model (the Perez sky needs E_dh > 0)",

@@ -148,18 +148,8 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
       hour.skipped = "missing direct or diffuse value";
       return;
     }
-    PerezHourInput in;
+    PerezHourInput in = perez_hour_input(r, weather.photometric);
     in.clamps = options.clamps;
-    if (weather.photometric) {
-      in.direct_normal_illuminance = r.direct_normal_illuminance;
-      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
-    } else {
-      in.direct_normal_irradiance = r.direct_normal_irradiance;
-      in.diffuse_horizontal_irradiance = r.diffuse_horizontal_irradiance;
-      in.direct_normal_illuminance = r.direct_normal_illuminance;
-      in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
-    }
-    in.dew_point_c = r.dew_point_c;
     if (r.diffuse_horizontal_irradiance == 0.0 || (weather.photometric && r.diffuse_horizontal_illuminance == 0.0)) {
       hour.skipped = "diffuse horizontal value 0 with the sun up";
       return;

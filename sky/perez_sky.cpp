@@ -1,5 +1,7 @@
 #include "sky/perez_sky.hpp"
 
+#include "sky/weather_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -288,6 +290,21 @@ PerezHour perez_hour(const PerezHourInput& in) {
   h.diffuse_horizontal_lux = in.diffuse_horizontal_illuminance.value_or(condition.diffuse_efficacy * c.diffuse_horizontal_irradiance);
   h.direct_normal_lux = in.direct_normal_illuminance.value_or(condition.direct_efficacy * c.direct_normal_irradiance);
   return h;
+}
+
+PerezHourInput perez_hour_input(const WeatherRecord& r, bool photometric) {
+  PerezHourInput in;
+  if (photometric) {
+    in.direct_normal_illuminance = r.direct_normal_illuminance;
+    in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+  } else {
+    in.direct_normal_irradiance = r.direct_normal_irradiance;
+    in.diffuse_horizontal_irradiance = r.diffuse_horizontal_irradiance;
+    in.direct_normal_illuminance = r.direct_normal_illuminance;
+    in.diffuse_horizontal_illuminance = r.diffuse_horizontal_illuminance;
+  }
+  in.dew_point_c = r.dew_point_c;
+  return in;
 }
 
 }  // namespace daylit

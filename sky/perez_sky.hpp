@@ -145,6 +145,12 @@ struct PerezHourInput {
   double distance_au = 1;             // Earth–sun distance (SPA's R) for E_0
   PerezClamps clamps = PerezClamps::none;
 };
+
+struct WeatherRecord;  // sky/weather_file.hpp
+// The hour's irradiances (or, for a photometric .wea, illuminances), illuminances and dew point
+// from a weather record, as `illuminance --sky perez --weather` and `annual` take them.
+PerezHourInput perez_hour_input(const WeatherRecord& record, bool photometric);
+
 struct PerezHour {
   PerezSky sky;
   double diffuse_horizontal_lux = 0, direct_normal_lux = 0;
