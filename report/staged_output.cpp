@@ -13,7 +13,20 @@ StagedOutputs::~StagedOutputs() {
 }
 
 std::string StagedOutputs::stage(const std::string& target) {
-  const std::filesystem::path path(target);
+  namespace fs = std::filesystem;
+  fs::path path(target);
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);  // of what a symbolic link names
+  if (fs::is_directory(status)) throw Error(target + ": is a directory, not an output file");
+  // A device, FIFO or socket (/dev/null, /dev/stdout, a pipe) is written in place: renaming a
+  // file onto it would replace the device itself (as root, /dev/null became a plain file), and
+  // what went into it cannot be taken back anyway.
+  if (fs::exists(status) && !fs::is_regular_file(status)) return target;
+  // A symbolic link keeps linking: the file it names is the one replaced.
+  if (fs::is_symlink(fs::symlink_status(path, ec))) {
+    const fs::path named = fs::read_symlink(path, ec);
+    if (!ec) path = named.is_absolute() ? named : path.parent_path() / named;
+  }
   const auto parent = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   if (!std::filesystem::is_directory(parent)) throw Error(target + ": output directory does not exist");
   // Keep the extension last: image writers choose the format by it.

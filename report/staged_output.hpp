@@ -1,7 +1,9 @@
 #pragma once
 // Output files that appear only when the whole run has succeeded: each is written under a
 // temporary name beside its target and renamed at commit(); anything not committed is removed,
-// so a failed run leaves no partial output behind.
+// so a failed run leaves no partial output behind. A target that is a device or a pipe
+// (/dev/null, /dev/stdout) is written in place; one that is a symbolic link replaces the file the
+// link names.
 
 #include <filesystem>
 #include <string>
@@ -16,7 +18,7 @@ class StagedOutputs {
   StagedOutputs& operator=(const StagedOutputs&) = delete;
   ~StagedOutputs();
 
-  // Temporary path to write instead of `target`.
+  // Path to write instead of `target` (`target` itself where it is a device or a pipe).
   std::string stage(const std::string& target);
   // Renames every staged file onto its target.
   void commit();

@@ -187,5 +187,31 @@ if [ -x /usr/bin/time ]; then
   echo "ok   eval 2 million lines: peak RSS $rss_kb kB, $growth_kb kB over 20,000 lines"
 fi
 rm -f big.jsonl answers.jsonl
+
+# Outputs that are not plain files. A FIFO (as /dev/null or /dev/stdout are devices) is written
+# in place, not replaced by a renamed file: as root, renaming onto /dev/null turned it into a
+# plain file. A symbolic link keeps linking and the file it names gets the results.
+mkfifo out.fifo
+cat out.fifo > fifo.txt &
+reader=$!
+"$daylit" df --components sc --scene window.rad --apertures window.rad --grid grid.pts --out out.fifo --quiet 2> stderr.txt
+status=$?
+# The reader ends at the writer's end of file; had daylit replaced the FIFO, it would wait forever.
+for _ in $(seq 50); do kill -0 "$reader" 2> /dev/null || break; sleep 0.1; done
+kill "$reader" 2> /dev/null
+wait "$reader" 2> /dev/null
+if [ "$status" -ne 0 ] || [ ! -p out.fifo ] || ! grep -q "^grid,index" fifo.txt; then
+  echo "FAIL --out to a FIFO: status $status; still a FIFO: $([ -p out.fifo ] && echo yes || echo no)"; failures=$((failures + 1))
+fi
+mkdir results && ln -s results/df.csv link.csv
+"$daylit" df --components sc --scene window.rad --apertures window.rad --grid grid.pts --out link.csv --quiet 2> stderr.txt
+status=$?
+if [ "$status" -ne 0 ] || [ ! -L link.csv ] || ! grep -q "^grid,index" results/df.csv; then
+  echo "FAIL --out to a symbolic link: status $status; still a link: $([ -L link.csv ] && echo yes || echo no)"; failures=$((failures + 1))
+fi
+"$daylit" df --components sc --scene window.rad --apertures window.rad --grid grid.pts --out results --quiet 2> stderr.txt
+status=$?
+clean_failure_status "--out to a directory" "$status"
+grep -q "results: is a directory" stderr.txt || { echo "FAIL --out to a directory: $(head -n 1 stderr.txt)"; failures=$((failures + 1)); }
 echo "$failures failures"
 [ "$failures" -eq 0 ]
