@@ -23,6 +23,7 @@
 #include <iostream>
 
 #include <fmt/format.h>
+#include <gsl/gsl_sf_clausen.h>
 
 #include "bench/bench_suites.hpp"
 #include "report/plot.hpp"
@@ -98,7 +99,8 @@ std::vector<SpecialRow> special_functions(bool quick) {
                      N;
     rows.push_back({"cl2", method, 0, t, worst, std::sqrt(sum2 / N)});
   };
-  cl2_row("gsl", [](double x) { return clausen(x); });
+  cl2_row("series", [](double x) { return clausen(x); });
+  cl2_row("gsl", [](double x) { return gsl_sf_clausen(x); });
   cl2_row("grosjean", [](double x) { return clausen_grosjean(x); });
   cl2_row("series_long_double", [](double x) { return double(clausen((long double)x)); });
 
@@ -125,7 +127,7 @@ std::vector<SpecialRow> special_functions(bool quick) {
                      N;
     rows.push_back({"lambda", method, parameter, t, worst, std::sqrt(sum2 / N)});
   };
-  lambda_row("eq36_gsl", 0, [](double a, double b) { return chen_arvo_lambda(a, b); });
+  lambda_row("eq36_series", 0, [](double a, double b) { return chen_arvo_lambda(a, b); });
   lambda_row("eq36_grosjean", 0, [](double a, double b) { return chen_arvo_lambda(a, b, ClausenMethod::grosjean); });
   for (const int nodes : quick ? std::vector<int>{100, 300} : std::vector<int>{100, 300, 1000}) {
     const LambdaPrimeTable table(nodes);

@@ -47,9 +47,9 @@ struct DfOptions {
   // office sample (see the README), which the quick-start command should not.
   std::string components = "sc";
   double ground_reflectance = 0.2;
-  double reflection_tolerance = 0.01;  // DF percentage points, every sensor's ERC + IRC
-  double element_size = 1.0;           // model units
-  int max_refinements = 3;
+  double reflection_tolerance = 0.05;  // DF percentage points, every sensor's ERC + IRC
+  double element_size = 0;             // model units; 0: automatic (reflected_components.hpp)
+  int max_refinements = 0;
   std::vector<std::string> reflection_options_given;  // names, for the notice with --components sc
   double median_diffuse_lux = 0;   // EN 17037's E_v,d,med; 0: no EN 17037 block
 };
@@ -79,7 +79,9 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       "through apertures (weighted by their transmittance; glass: T at the element's centre direction), IRC: "
       "surfaces seen inside; Gauss-Seidel to roundoff";
   j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
-               {"refinement_rounds", r.refinements}, {"element_size", opt.element_size},
+               {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
+               {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
+                                                        : "automatic: twice the median distance between neighbouring sensors"},
                {"max_error_percent_by_round", r.error_by_round}};
   j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
                  {"reflectance_max", r.reflectance_max}};
@@ -87,12 +89,12 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"tolerance_percent", opt.reflection_tolerance},
       {"max_estimate_percent", r.max_error_percent},
       {"met", r.max_error_percent <= opt.reflection_tolerance},
-      {"residual_max", r.residual_max},
       {"how",
-       "estimate, not a rigorous bound: the residual M_h - rho(E0 + K M_h) evaluated exactly at 4 check points per "
-       "element side (centroid and near the vertices), its mean |r| per side carried through every bounce by "
-       "e = |r| + rho |K| e (the discrete form of |r|/(1 - rho_max)), then to each sensor by the magnitudes of its "
-       "coefficients; plus, through glass, the spread of T over each element's directions"}};
+       "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from a mesh of "
+       "elements twice as large (the reported one is its uniform split), the two differences added, plus, through "
+       "glass, the spread of T over each element's directions times what it gives. It covers the error where halving "
+       "the elements at least halves it; linear elements do better (second order where the exitance is smooth), so "
+       "the actual error is usually a fraction of it"}};
   j["energy_balance"] = {
       {"first_bounce_flux", r.flux_first_bounce},
       {"absorbed_flux", r.flux_absorbed},
@@ -107,6 +109,11 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
                                 "sees no sky directly"},
       {"receivers_seeing_no_sky_directly", r.receivers_direct_empty},
       {"receivers", r.receivers_direct},
+      {"surface_sides_solved", r.sides_solved},
+      {"surface_sides_left_out", r.sides_left_out},
+      {"surface_sides_left_out_why", "no light from them reaches a sensor, directly or by reflection (decided by "
+                                     "which side of each plane the sensors and surfaces lie on; exact: the values "
+                                     "solved are those of the whole system)"},
       {"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"}};
   j["run_time_s"] = run_time_s;
   return j;
@@ -360,14 +367,15 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "(default 0.2, as gensky's ground glow); the model's own ground polygons are surfaces")
       ->check(CLI::Range(0.0, 0.999999));
   CLI::Option* const tolerance_option = df->add_option("--reflection-tolerance", opt->reflection_tolerance,
-                 "Target of every sensor's estimated error of ERC + IRC (DF percentage points; default 0.01): elements "
-                 "are split where they contribute most until it is met or --max-refinements rounds are done")
+                 "Target of every sensor's estimated error of ERC + IRC (DF percentage points; default 0.05): while it "
+                 "is not met and --max-refinements allows, every element is split again (about 16 times the work)")
       ->check(CLI::PositiveNumber);
   CLI::Option* const size_option = df->add_option("--element-size", opt->element_size,
-                 "Longest element edge near the sensors and apertures (model units; default 1), growing with the "
-                 "distance farther away")
+                 "Longest element edge near the sensors and apertures (model units; default: twice the median "
+                 "distance between neighbouring sensors), growing with the distance farther away; the error estimate "
+                 "compares with elements twice as large")
       ->check(CLI::PositiveNumber);
-  CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Rounds of element splitting at most (default 3)")
+  CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Further rounds of splitting every element while the tolerance is not met (default 0)")
       ->check(CLI::Range(0, 8));
   df->add_option("--median-diffuse-lux", opt->median_diffuse_lux,
                  "The site's median diffuse horizontal illuminance over the daylight hours (lux; EN 17037 Table A.3): "

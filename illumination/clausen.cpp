@@ -1,9 +1,9 @@
 #include "illumination/clausen.hpp"
 
-#include <gsl/gsl_sf_clausen.h>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace daylit {
 
@@ -66,9 +66,59 @@ R clausen_series(R x) {
   return head + x * sum;
 }
 
+// The two series of the double Cl2 (clausen.hpp), their coefficients rounded from long double:
+//   about 0:  Cl2(a) = a − a log a + a Σ_{n≥1} ζ(2n)/(n(2n+1)(2π)^{2n}) a^{2n},
+//   about π:  Cl2(π − y) = y log 2 − y Σ_{n≥1} (1 − 4^{−n}) ζ(2n)/(n(2n+1)π^{2n}) y^{2n},
+// the second from Cl2'(θ) = −log(2 sin(θ/2)) and log cos z = −Σ (4^n − 1) ζ(2n) z^{2n}/(n π^{2n}).
+// Each is used where its ratio of terms is at most 1/9 (a ≤ 2π/3, y ≤ π/3), so 18 terms leave
+// less than 1e-19 of the result.
+constexpr int kSeriesTerms = 18;
+
+struct ClausenSeries {
+  std::array<double, kSeriesTerms + 1> about_zero{}, about_pi{};
+  ClausenSeries() {
+    const auto zeta = zeta_even<long double, kSeriesTerms>();
+    const long double pi = real::pi<long double>();
+    for (int n = 1; n <= kSeriesTerms; ++n) {
+      const long double base = zeta[std::size_t(n)] / ((long double)n * (2 * n + 1));
+      about_zero[std::size_t(n)] = double(base / real::powi(2 * pi, 2 * n));
+      about_pi[std::size_t(n)] = double((1 - real::powi(0.25L, n)) * base / real::powi(pi, 2 * n));
+    }
+  }
+};
+
+// Σ_{n=1}^{N} c_n u^n by Horner's rule.
+double power_series(const std::array<double, kSeriesTerms + 1>& c, double u) {
+  double sum = c[kSeriesTerms];
+  for (int n = kSeriesTerms - 1; n >= 1; --n) sum = sum * u + c[std::size_t(n)];
+  return sum * u;
+}
+
 }  // namespace
 
-double clausen(double x) { return gsl_sf_clausen(x); }
+double clausen(double x) {
+  static const ClausenSeries series;
+  // 2π in two parts (Cody and Waite): x − k·2π_hi by one fused multiply-add is rounded once,
+  // relative to the small result, and k·2π_lo restores what 2π_hi lacks, so the reduced argument
+  // keeps its digits down to the zeros at multiples of 2π.
+  constexpr double two_pi_hi = 6.28318530717958623200, two_pi_lo = 2.44929359829470635445e-16;
+  constexpr double pi_hi = 3.14159265358979311600, pi_lo = 1.22464679914735317723e-16;
+  constexpr double ln2 = 0.69314718055994530942;
+  if (!std::isfinite(x)) return std::numeric_limits<double>::quiet_NaN();
+  const double k = std::nearbyint(x / two_pi_hi);
+  const double r = std::fma(-k, two_pi_hi, x) - k * two_pi_lo;  // in [−π, π], up to roundoff
+  const double a = std::abs(r);
+  double value;
+  if (a == 0) {
+    value = 0;
+  } else if (a <= 2.0943951023931957) {  // 2π/3
+    value = a - a * std::log(a) + a * power_series(series.about_zero, a * a);
+  } else {
+    const double y = std::max(0.0, (pi_hi - a) + pi_lo);
+    value = y * ln2 - y * power_series(series.about_pi, y * y);
+  }
+  return r < 0 ? -value : value;
+}
 
 long double clausen(long double x) { return clausen_series(x); }
 

@@ -14,8 +14,13 @@
 namespace daylit {
 
 // Cl2(x) = −∫_0^x log|2 sin(t/2)| dt = Σ_k sin(kx)/k², for any real x (odd, period 2π, zero at
-// multiples of π). GSL's gsl_sf_clausen: within a few tens of ulp of max(|Cl2|, 1) over a period
-// (DESIGN.md §7; proven against MPFR in tests/illumination/test_clausen.cpp).
+// multiples of π). x reduced to [−π, π] (Cody–Waite), then one of two series: about 0 for
+// |x| ≤ 2π/3 (Lewin 1958, eq. 4.21, below) and about π beyond (clausen.cpp), each with ratio of
+// terms ≤ 1/9, 18 terms by Horner's rule. Within 16 ulp of max(|Cl2|, 1) over [−2π, 4π] (proven
+// against MPFR in tests/illumination/test_clausen.cpp). Written here rather than GSL's
+// gsl_sf_clausen (as accurate, and the baseline of `bench rational`) because the radiosity
+// transport calls it six times per edge: GSL's Chebyshev series with its error estimate was 28 %
+// of a run's time.
 double clausen(double x);
 
 // Cl2 in long double and __float128 for the escalated sums of rational_moments.cpp, by the
@@ -31,8 +36,8 @@ real::quad clausen(real::quad x);
 // to all x by oddness and period: an approximate path for bench rational (absolute error ~1e-6).
 double clausen_grosjean(double x);
 
-// Which Cl2 evaluates Λ in lambda_bracket(): the library, or Grosjean's approximation.
-enum class ClausenMethod { gsl, grosjean };
+// Which Cl2 evaluates Λ in lambda_bracket(): clausen(), or Grosjean's approximation.
+enum class ClausenMethod { series, grosjean };
 
 // 4·√(1 − α²)·Λ(α, β) with Λ(α, β) = ∫_0^β log(α cos θ)/(1 − α² cos² θ) dθ (eq. 34), by eq. 36:
 //     2 Cl2(2μ) − Cl2(4μ − 2η) − Cl2(2η) + 2(η − μ) log γ,
@@ -49,7 +54,7 @@ enum class ClausenMethod { gsl, grosjean };
 // absolute values of the bracket's terms and of its Cl2's error scale (for cancellation estimates).
 template <class R>
 real::Tracked<R> lambda_bracket_tracked(R alpha, R kappa, R sin_beta, R cos_beta,
-                                        ClausenMethod method = ClausenMethod::gsl) {
+                                        ClausenMethod method = ClausenMethod::series) {
   if (sin_beta < 0) {
     const real::Tracked<R> b = lambda_bracket_tracked<R>(alpha, kappa, -sin_beta, cos_beta, method);
     return {-b.value, b.magnitude};
@@ -64,21 +69,21 @@ real::Tracked<R> lambda_bracket_tracked(R alpha, R kappa, R sin_beta, R cos_beta
     return clausen(x);
   };
   const R t1 = 2 * cl2(2 * mu), t2 = cl2(4 * mu - 2 * eta), t3 = cl2(2 * eta), t4 = 2 * (eta - mu) * log_gamma;
-  // Each Cl2 is good to a few units of roundoff of max(|Cl2|, 1) (GSL, and our series), not of
+  // Each Cl2 is good to a few units of roundoff of max(|Cl2|, 1) (both series), not of
   // |Cl2|: hence the 4 (= 2 + 1 + 1, the weights of the three terms) beside their values.
   return {t1 - t2 - t3 + t4, real::abs(t1) + real::abs(t2) + real::abs(t3) + real::abs(t4) + 4};
 }
 
 // The bracket alone.
 template <class R>
-R lambda_bracket(R alpha, R kappa, R sin_beta, R cos_beta, ClausenMethod method = ClausenMethod::gsl) {
+R lambda_bracket(R alpha, R kappa, R sin_beta, R cos_beta, ClausenMethod method = ClausenMethod::series) {
   return lambda_bracket_tracked<R>(alpha, kappa, sin_beta, cos_beta, method).value;
 }
 
 // Λ(α, β) itself for 0 < α ≤ 1, |β| ≤ π/2: eq. 35 at α = 1, eq. 36 (through lambda_bracket)
 // otherwise. Loses relative accuracy like 1/κ as α → 1 (the bracket is O(κ)), which is why the
 // kernels use lambda_bracket() directly.
-double chen_arvo_lambda(double alpha, double beta, ClausenMethod method = ClausenMethod::gsl);
+double chen_arvo_lambda(double alpha, double beta, ClausenMethod method = ClausenMethod::series);
 
 // The tabulated path of §4.2 (eqs. 40–45): Λ = λ + Λ' with λ(α, β) = log α · atan(tan β/κ)/κ in
 // closed form (eq. 41) and Λ'(α, β) = ∫_0^β log(cos θ)/(1 − α² cos² θ) dθ (eq. 42), bounded on

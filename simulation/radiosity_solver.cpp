@@ -6,7 +6,7 @@
 namespace daylit {
 
 RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
-                                  const std::vector<double>& source, bool absolute, int max_sweeps) {
+                                  const std::vector<double>& source, int max_sweeps) {
   RadiositySolution s;
   s.exitance = source;
   const std::size_t n = rows.size();
@@ -14,7 +14,7 @@ RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const s
     double change = 0, size = 0;
     for (std::size_t i = 0; i < n; ++i) {
       double e = 0;
-      for (const auto& [j, k] : rows[i]) e += (absolute ? std::abs(k) : k) * s.exitance[j];
+      for (const auto& [j, k] : rows[i]) e += k * s.exitance[j];
       const double m = source[i] + reflectance[i] * e;
       change = std::max(change, std::abs(m - s.exitance[i]));
       size = std::max(size, std::abs(m));

@@ -20,9 +20,8 @@ struct RadiositySolution {
 // 1e-15 of max |M| (roundoff) or `max_sweeps`. The iteration contracts by at most
 // max_i ρ_i Σ_j |K_ij| per sweep, below 1 for ρ < 1 and rows that are form factors (Σ_j K_ij ≤ 1,
 // plus the roundoff of the linear basis' signed coefficients), so it converges for any
-// reflectance below 1; `absolute`: iterate with |K_ij| (the error propagation, which must not
-// let signs cancel).
+// reflectance below 1.
 RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
-                                  const std::vector<double>& source, bool absolute = false, int max_sweeps = 100000);
+                                  const std::vector<double>& source, int max_sweeps = 100000);
 
 }  // namespace daylit

@@ -17,6 +17,10 @@ namespace daylit {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// Distances to a plane below this fraction of the model's size count as on either side of it
+// when deciding which sides are live: far above the roundoff of points on a surface (1e-16 of
+// the model), far below any gap that separates surfaces.
+constexpr double kSideMargin = 1e-9;
 
 // ---- Apertures grouped by transmittance ------------------------------------------------------
 // Light seen through an aperture is weighted by its transmittance; apertures that transmit alike
@@ -91,9 +95,13 @@ SphericalRegion above_horizon(const VisibilityEngine& engine, const Vec3& x, con
 // ---- The transport model ----------------------------------------------------------------------
 class Transport {
  public:
+  // `coarsening`: the first mesh's elements are that many times the asked size. `every_side`:
+  // solve both sides of every surface, whether light from them reaches a sensor or not.
   Transport(const Scene& scene, const std::vector<double>& reflectance, const VisibilityEngine& engine,
-            const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options)
-      : scene_(scene), reflectance_(reflectance), engine_(engine), options_(options), groups_(group_apertures(scene)) {
+            const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options, double coarsening,
+            bool every_side)
+      : scene_(scene), reflectance_(reflectance), engine_(engine), options_(options), groups_(group_apertures(scene)),
+        coarsening_(coarsening) {
     e_out_ = unobstructed_horizontal_irradiance(options.sky);
     ground_luminance_ = options.ground_reflectance * e_out_ / kPi;
     // What the mesh is graded towards: the apertures and the sensors.
@@ -107,8 +115,21 @@ class Transport {
       for (const Vec3& v : a.polygon.vertices) all.add(v);
     scale_ = all.empty() ? 1 : std::max({all.hi.x - all.lo.x, all.hi.y - all.lo.y, all.hi.z - all.lo.z, 1e-300});
     mesh_ = mesh_surfaces(scene.occluders, reflectance, [&](const RadiosityElement& e) { return max_edge(e); });
+    if (every_side)
+      live_.assign(mesh_.surfaces.size(), {true, true});
+    else
+      find_live_sides(grids);
     build_luminaire_engines();
     build_sky_box(all);
+  }
+
+  // Whether side `side` (0 along the surface's normal) of surface s can send light to a sensor,
+  // directly or by way of other sides: the others are left out (no unknowns, no rows).
+  bool live(std::size_t s, int side) const { return live_[s][std::size_t(side)]; }
+  std::size_t live_side_count() const {
+    std::size_t n = 0;
+    for (const auto& l : live_) n += l[0] + l[1];
+    return n;
   }
 
   const RadiosityMesh& mesh() const { return mesh_; }
@@ -122,7 +143,7 @@ class Transport {
     double d = sensor_box_.empty() ? std::numeric_limits<double>::infinity() : sensor_box_.distance(c);
     for (const Box& b : aperture_boxes_) d = std::min(d, b.distance(c));
     if (!std::isfinite(d)) d = 0;
-    return std::max(options_.element_size, options_.grading * d);
+    return coarsening_ * std::max(options_.element_size, options_.grading * d);
   }
 
   // First bounce at (x, n) through the apertures: the sky above the horizon and the far ground
@@ -191,20 +212,23 @@ class Transport {
   // Every element's coefficients at (x, n): sink(element, side, c, through, spread), c such that
   // the irradiance is Σ_k c_k M_k (through: already weighted by the transmittance, as the
   // difference of the two occluder sets), spread: the relative spread of T(μ) over the element's
-  // directions (glass), for the error estimate.
+  // directions (glass), for the error estimate. `mesh`: this model's mesh or an earlier one of
+  // the same surfaces.
   template <class Sink>
-  void transport(const Vec3& x, const Vec3& n, std::size_t own_surface, VisibilityCounters& counters, Sink&& sink) const {
+  void transport(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n, std::size_t own_surface,
+                 VisibilityCounters& counters, Sink&& sink) const {
     // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself
     // (the receiver's own polygon lies in the receiver's tangent plane and casts no shadow).
     VisibilityOptions opt;
     opt.clip_to_horizon = false;
     opt.occluders_beyond = false;
-    for (std::size_t s = 0; s < mesh_.surfaces.size(); ++s) {
+    for (std::size_t s = 0; s < mesh.surfaces.size(); ++s) {
       if (s == own_surface) continue;
-      const RadiositySurface& surf = mesh_.surfaces[s];
+      const RadiositySurface& surf = mesh.surfaces[s];
       const double facing = dot(surf.normal, x - surf.point);
       if (facing == 0) continue;
       const int side = facing > 0 ? 0 : 1;
+      if (!live_[s][std::size_t(side)]) continue;  // never so for a receiver that is live itself
       const Polygon& poly = scene_.occluders[surf.occluder];
       bool in_front = false;
       for (const Vec3& v : poly.vertices) in_front |= dot(n, v - x) > 0;
@@ -217,8 +241,8 @@ class Transport {
       inside_parts.reserve(surf.elements.size());
       for (std::size_t e : surf.elements) {
         inside_parts.push_back(inside.empty() ? SphericalRegion{}
-                                              : element_region(inside, inside_free, mesh_.elements[e], x, n));
-        const auto c = element_irradiance_coefficients(inside_parts.back(), mesh_.elements[e], x, n);
+                                              : element_region(inside, inside_free, mesh.elements[e], x, n));
+        const auto c = element_irradiance_coefficients(inside_parts.back(), mesh.elements[e], x, n);
         sink(e, side, c, false, 0.0);
       }
       // Through each group of apertures: only where one of its apertures may stand between x
@@ -235,7 +259,7 @@ class Transport {
         const bool through_free = counters.pairs_clipped == clipped_t;
         const ApertureGroup& group = groups_[g];
         for (std::size_t i = 0; i < surf.elements.size(); ++i) {
-          const RadiosityElement& el = mesh_.elements[surf.elements[i]];
+          const RadiosityElement& el = mesh.elements[surf.elements[i]];
           const SphericalRegion part = element_region(through, through_free, el, x, n);
           if (part.empty()) continue;
           auto c = element_irradiance_coefficients(part, el, x, n);
@@ -261,12 +285,84 @@ class Transport {
     }
   }
 
+  // Every element split in four at its edges' midpoints.
+  void split_all() {
+    refine_mesh(mesh_, std::vector<bool>(mesh_.elements.size(), true));
+    remesh_boxes();
+  }
+
   void remesh_boxes() {
     surf_boxes_.clear();
     for (const auto& s : mesh_.surfaces) surf_boxes_.push_back(box_of(scene_.occluders[s.occluder].vertices));
   }
 
  private:
+  // The live sides, by a closure over surfaces that only uses the two tests transport() applies
+  // before it asks for visibility (the receiver on the source's side of its plane, a vertex of
+  // the source in front of the receiver's tangent plane), each made conservative: a receiver point
+  // lies inside its surface's polygon, so a sign it has at some point is had by some vertex; and
+  // distances within kSideMargin of a plane count as either sign where roundoff in the points
+  // could give transport() either, so that it never asks for a side found dead. Seeds: the
+  // sensors. Since every live receiver's sources are live, the live unknowns take the values of
+  // the whole system (to roundoff: the solver's stopping test looks at the largest exitance);
+  // the dead sides (the outside of a room's walls, for one) neither receive from nor send to them.
+  void find_live_sides(const std::vector<const SensorGrid*>& grids) {
+    const std::size_t ns = mesh_.surfaces.size();
+    live_.assign(ns, {false, false});
+    const double margin = kSideMargin * scale_;
+    // Which sides of surface t a receiver at x, facing n, may receive from.
+    const auto sides_seen = [&](std::size_t t, const std::vector<Vec3>& xs, const Vec3& n, std::size_t own,
+                                std::array<bool, 2>& seen) {
+      if (t == own) return;
+      const RadiositySurface& surf = mesh_.surfaces[t];
+      const Polygon& poly = scene_.occluders[surf.occluder];
+      bool in_front = false;
+      for (const Vec3& v : poly.vertices)
+        for (const Vec3& x : xs) in_front |= dot(n, v - x) > -margin;
+      if (!in_front) return;
+      // A sensor within the margin of the plane may see either side. A surface's receiver points
+      // lie strictly inside its elements, so where the surface touches the plane only along an
+      // edge or at a vertex (a wall meeting the floor) they are all on the side of its other
+      // vertices; only a surface lying in the plane may see either side.
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Vec3& x : xs) {
+        const double facing = dot(surf.normal, x - surf.point);
+        lo = std::min(lo, facing);
+        hi = std::max(hi, facing);
+      }
+      const bool point = xs.size() == 1, in_plane = hi <= margin && lo >= -margin;
+      seen[0] = seen[0] || (point ? hi > -margin : hi > margin || in_plane);
+      seen[1] = seen[1] || (point ? lo < margin : lo < -margin || in_plane);
+    };
+    std::vector<std::pair<std::size_t, int>> todo;
+    const auto mark = [&](std::size_t t, const std::array<bool, 2>& seen) {
+      for (int side = 0; side < 2; ++side)
+        if (seen[std::size_t(side)] && !live_[t][std::size_t(side)]) {
+          live_[t][std::size_t(side)] = true;
+          todo.emplace_back(t, side);
+        }
+    };
+    for (const SensorGrid* g : grids)
+      for (const Sensor& sensor : g->sensors)
+        for (std::size_t t = 0; t < ns; ++t) {
+          std::array<bool, 2> seen{false, false};
+          sides_seen(t, {sensor.position}, sensor.normal, ns, seen);
+          mark(t, seen);
+        }
+    while (!todo.empty()) {
+      const auto [s, side] = todo.back();
+      todo.pop_back();
+      const RadiositySurface& surf = mesh_.surfaces[s];
+      const Vec3 n = side == 0 ? surf.normal : -1.0 * surf.normal;
+      const std::vector<Vec3>& xs = scene_.occluders[surf.occluder].vertices;
+      for (std::size_t t = 0; t < ns; ++t) {
+        std::array<bool, 2> seen{false, false};
+        sides_seen(t, xs, n, s, seen);
+        mark(t, seen);
+      }
+    }
+  }
+
   // The surfaces as luminaires (aperture s: surface s), seen past the opaque polygons, which keep
   // their indices in Scene::occluders so that the luminaire's own can be excluded by index:
   // `inside_` also past every aperture (what is seen inside), `through_[g]` past the apertures
@@ -323,6 +419,8 @@ class Transport {
   std::unique_ptr<VisibilityEngine> inside_;
   std::vector<VisibilityEngine> through_;  // per aperture group
   std::unique_ptr<VisibilityEngine> sky_box_;
+  std::vector<std::array<bool, 2>> live_;  // per surface and side
+  double coarsening_ = 1;
 };
 
 std::size_t unknown(std::size_t element, int side, int k) { return 6 * element + 3 * std::size_t(side) + std::size_t(k); }
@@ -340,7 +438,7 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
   const std::size_t own = t.mesh().surfaces[own_surface].occluder;
   const auto a = t.through_apertures(x, n, own, true, counters);
   r.first_bounce = a.sky + a.ground + t.direct(x, n, own, counters, r.direct_empty);
-  t.transport(x, n, own_surface, counters, [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) {
+  t.transport(t.mesh(), x, n, own_surface, counters, [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) {
     for (int k = 0; k < 3; ++k)
       if (c[k] != 0) r.row.emplace_back(std::uint32_t(unknown(e, side, k)), c[k]);
   });
@@ -350,7 +448,6 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
 struct Local {
   VisibilityCounters counters;
   std::size_t direct_empty = 0, direct = 0;
-  std::vector<double> importance;
 };
 
 // Rows of K and first bounce at every node, in parallel over element sides.
@@ -362,6 +459,7 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result)
     const std::size_t e = i / 2;
     const int side = int(i % 2);
     const RadiosityElement& el = mesh.elements[e];
+    if (!t.live(el.surface, side)) return;
     const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
     for (int k = 0; k < 3; ++k) {
       ReceiverRow r = receiver_row(t, el.nodes[k], n, el.surface, local.counters);
@@ -399,7 +497,9 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
                                  const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
                                  const ReflectionOptions& options) {
   check_inputs(scene, reflectance, options);
-  const Transport t(scene, reflectance, engine, grids, options);
+  ReflectionOptions opt = options;
+  if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
+  const Transport t(scene, reflectance, engine, grids, opt, 1.0, true);
   ReflectionResult scratch;
   std::vector<ReceiverRow> rows = node_rows(t, scratch);
   RadiositySystem sys;
@@ -412,11 +512,151 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
   return sys;
 }
 
+double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {
+  std::vector<Vec3> points;
+  for (const SensorGrid* g : grids)
+    for (const Sensor& s : g->sensors) points.push_back(s.position);
+  std::vector<double> nearest;
+  const std::size_t step = std::max<std::size_t>(1, points.size() / 512);
+  for (std::size_t i = 0; i < points.size(); i += step) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < points.size(); ++j)
+      if (j != i) {
+        const double dj = norm(points[j] - points[i]);
+        if (dj > 0) d = std::min(d, dj);
+      }
+    if (std::isfinite(d)) nearest.push_back(d);
+  }
+  if (!nearest.empty()) {
+    std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(nearest.size() / 2), nearest.end());
+    return 2 * nearest[nearest.size() / 2];
+  }
+  Box b;
+  for (const Aperture& a : scene.apertures)
+    for (const Vec3& v : a.polygon.vertices) b.add(v);
+  for (const Vec3& p : points) b.add(p);
+  const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
+  return side > 0 ? side / 4 : 1.0;
+}
+
+namespace {
+
+// One solution on one mesh: the node values, and the energy balance and solver figures.
+struct MeshSolution {
+  std::vector<double> exitance;
+  int sweeps = 0;
+  double solver_change = 0;
+  double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0;
+};
+
+MeshSolution solve_mesh(const Transport& t, ReflectionResult& result) {
+  const RadiosityMesh& mesh = t.mesh();
+  const std::size_t nu = t.unknowns();
+  std::vector<ReceiverRow> rows = node_rows(t, result);
+  std::vector<double> rho(nu), source(nu);
+  std::vector<TransportRow> k_rows(nu);
+  for (std::size_t u = 0; u < nu; ++u) {
+    const double r = mesh.surfaces[mesh.elements[u / 6].surface].reflectance;
+    rho[u] = r;
+    source[u] = r * rows[u].first_bounce;
+    k_rows[u] = std::move(rows[u].row);
+  }
+  RadiositySolution sol = solve_radiosity(k_rows, rho, source);
+  MeshSolution out;
+  out.sweeps = sol.sweeps;
+  out.solver_change = sol.last_change;
+  out.exitance = std::move(sol.exitance);
+  const std::vector<double>& m = out.exitance;
+  // Energy balance (see the header): first bounce, absorbed, escaping, by the nodes' rule.
+  for (std::size_t u = 0; u < nu; ++u) {
+    const double w = mesh.elements[u / 6].area / 3;
+    double received = 0, f = 0;
+    for (const auto& [j, c] : k_rows[u]) {
+      received += c * m[j];
+      f += c;
+    }
+    out.flux_first_bounce += w * rows[u].first_bounce;
+    out.flux_absorbed += w * (1 - rho[u]) * (rows[u].first_bounce + received);
+    out.flux_escaping += w * m[u] * (1 - f);
+  }
+  return out;
+}
+
+// ERC and IRC at every sensor from the finer of two solutions, and the estimate of their error:
+// per element P of the coarser mesh, what P gives the sensor against what its four children give
+// (through apertures and inside each), the absolute differences summed over P. That is at least
+// the difference of the two sensor values, and a sensor where the two meshes agree by chance
+// (the difference changing sign across the room) keeps the estimate of its elements. Through
+// glass, each element's spread of T(μ) over its directions times what it gives is added (the
+// transmittance taken at the centroid's direction costs at most that).
+struct SensorValues {
+  std::vector<std::vector<double>> erc, irc, estimate;  // per grid, per sensor
+};
+
+struct SensorLocal {
+  VisibilityCounters counters;
+  std::vector<double> through, inside;  // per coarse element: coarse minus fine
+};
+
+SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh, const std::vector<double>& coarse,
+                           const std::vector<double>& fine, const std::vector<const SensorGrid*>& grids,
+                           ReflectionResult& result, const ProgressCallback& progress) {
+  SensorValues out;
+  const std::size_t nc = coarse_mesh.elements.size();
+  for (const SensorGrid* grid : grids) {
+    const std::size_t n = grid->sensors.size();
+    std::vector<double> erc(n, 0.0), irc(n, 0.0), estimate(n, 0.0);
+    const auto locals = for_each_sensor<SensorLocal>(n, 4, progress, [&](std::size_t i, SensorLocal& local) {
+      const Sensor& s = grid->sensors[i];
+      local.through.assign(nc, 0.0);
+      local.inside.assign(nc, 0.0);
+      t.transport(coarse_mesh, s.position, s.normal, std::size_t(-1), local.counters,
+                  [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double) {
+                    double value = 0;
+                    for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
+                    (through ? local.through : local.inside)[e] += value;
+                  });
+      const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
+      double e_through = a.ground, e_inside = 0, e_spread = 0;
+      // The finer mesh is the coarser one's uniform split: element j is a child of j / 4.
+      t.transport(t.mesh(), s.position, s.normal, std::size_t(-1), local.counters,
+                  [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
+                    double value = 0;
+                    for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
+                    (through ? e_through : e_inside) += value;
+                    (through ? local.through : local.inside)[e / 4] -= value;
+                    e_spread += sp * std::abs(value);
+                  });
+      double difference = 0;
+      for (std::size_t p = 0; p < nc; ++p) difference += std::abs(local.through[p]) + std::abs(local.inside[p]);
+      erc[i] = e_through;
+      irc[i] = e_inside;
+      estimate[i] = difference + e_spread;
+    });
+    for (const auto& l : locals) result.counters += l.counters;
+    out.erc.push_back(std::move(erc));
+    out.irc.push_back(std::move(irc));
+    out.estimate.push_back(std::move(estimate));
+  }
+  return out;
+}
+
+}  // namespace
+
 ReflectionResult reflected_components(const Scene& scene, const std::vector<double>& reflectance,
                                       const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
                                       const ReflectionOptions& options, const ProgressCallback& progress) {
   const double rho_max = check_inputs(scene, reflectance, options);
+  if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
+    std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
+    message += std::to_string(options.element_size);
+    message += " is not a positive number";
+    throw Error(message);
+  }
+  ReflectionOptions opt = options;
+  if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
   ReflectionResult result;
+  result.element_size = opt.element_size;
   result.reflectance_max = rho_max;
   for (const SensorGrid* g : grids) {
     SensorReflections s;
@@ -430,130 +670,43 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     return result;
   }
 
-  Transport t(scene, reflectance, engine, grids, options);
+  // The coarse mesh at twice the asked element size; each round solves its uniform split too and
+  // reports the finer solution, with the difference of the two as the error estimate.
+  Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
   const double to_percent = 100 / t.e_out();
-
+  result.sides_solved = t.live_side_count();
+  result.sides_left_out = 2 * t.surface_count() - result.sides_solved;
+  MeshSolution coarse = solve_mesh(t, result);
   for (int round = 0;; ++round) {
-    RadiosityMesh& mesh = t.mesh();
-    const std::size_t ne = mesh.elements.size(), nu = t.unknowns();
-    std::vector<ReceiverRow> rows = node_rows(t, result);
-    std::vector<double> rho(nu), source(nu);
-    std::vector<TransportRow> k_rows(nu);
-    for (std::size_t u = 0; u < nu; ++u) {
-      const double r = mesh.surfaces[mesh.elements[u / 6].surface].reflectance;
-      rho[u] = r;
-      source[u] = r * rows[u].first_bounce;
-      k_rows[u] = std::move(rows[u].row);
-    }
-    const RadiositySolution sol = solve_radiosity(k_rows, rho, source);
-    const std::vector<double>& m = sol.exitance;
-    result.sweeps = sol.sweeps;
-    result.solver_change = sol.last_change;
-
-    // ---- Energy balance (see the header): first bounce, absorbed, escaping, by the nodes' rule.
-    double first = 0, absorbed = 0, escaping = 0;
-    for (std::size_t u = 0; u < nu; ++u) {
-      const double w = mesh.elements[u / 6].area / 3;
-      const double e_total = rows[u].first_bounce + [&] {
-        double s = 0;
-        for (const auto& [j, c] : k_rows[u]) s += c * m[j];
-        return s;
-      }();
-      double f = 0;
-      for (const auto& [j, c] : k_rows[u]) f += c;
-      first += w * rows[u].first_bounce;
-      absorbed += w * (1 - rho[u]) * e_total;
-      escaping += w * m[u] * (1 - f);
-    }
-    result.flux_first_bounce = first;
-    result.flux_absorbed = absorbed;
-    result.flux_escaping = escaping;
-    result.balance_mismatch = first > 0 ? (first - absorbed - escaping) / first : 0;
-
-    // ---- Residual at check points other than the nodes, per element side.
-    static constexpr double kCheck[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.8, 0.1, 0.1}, {0.1, 0.8, 0.1}, {0.1, 0.1, 0.8}};
-    std::vector<double> residual(2 * ne, 0.0), residual_peak(2 * ne, 0.0);
-    const auto rlocals = for_each_sensor<Local>(2 * ne, 8, {}, [&](std::size_t i, Local& local) {
-      const std::size_t e = i / 2;
-      const int side = int(i % 2);
-      const RadiosityElement& el = mesh.elements[e];
-      const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
-      const double r = mesh.surfaces[el.surface].reflectance;
-      // A sensor's irradiance integrates the exitance's error over each element, so what it
-      // needs is the element's mean |r|, not its maximum: the mean over the check points.
-      double sum = 0, worst = 0;
-      for (const auto& b : kCheck) {
-        const Vec3 y = el.point(b[0], b[1], b[2]);
-        const ReceiverRow row = receiver_row(t, y, n, el.surface, local.counters);
-        double e_total = row.first_bounce;
-        for (const auto& [j, c] : row.row) e_total += c * m[j];
-        double m_h = 0;
-        for (int k = 0; k < 3; ++k) m_h += el.basis(k, y) * m[unknown(e, side, k)];
-        sum += std::abs(m_h - r * e_total);
-        worst = std::max(worst, std::abs(m_h - r * e_total));
-      }
-      residual[i] = sum / 4;
-      residual_peak[i] = worst;
-    });
-    for (const auto& l : rlocals) result.counters += l.counters;
-    result.residual_max = 0;
-    std::vector<double> r_source(nu);
-    for (std::size_t u = 0; u < nu; ++u) {
-      r_source[u] = residual[u / 3];
-      result.residual_max = std::max(result.residual_max, residual_peak[u / 3]);
-    }
-    // ē = |r̄| + ρ|K| ē: the residual carried through every further bounce.
-    const std::vector<double> e_bar = solve_radiosity(k_rows, rho, r_source, true).exitance;
-
-    // ---- Sensors: ERC (far ground and elements seen through apertures), IRC (elements seen
-    // inside), and the error estimate with each element's share of it.
-    double worst_sensor = 0;
-    std::vector<double> importance(ne, 0.0);
+    const RadiosityMesh coarse_mesh = t.mesh();
+    t.split_all();
+    MeshSolution fine = solve_mesh(t, result);
+    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result, progress);
+    double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
-      const SensorGrid& grid = *grids[g];
       SensorReflections& out = result.grids[g];
-      const auto slocals = for_each_sensor<Local>(grid.sensors.size(), 4, progress, [&](std::size_t i, Local& local) {
-        if (local.importance.empty()) local.importance.assign(ne, 0.0);
-        const Sensor& s = grid.sensors[i];
-        const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
-        double erc = a.ground, irc = 0, err = 0;
-        t.transport(s.position, s.normal, std::size_t(-1), local.counters,
-                    [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double spread) {
-                      double value = 0, bound = 0;
-                      for (int k = 0; k < 3; ++k) {
-                        value += c[k] * m[unknown(e, side, k)];
-                        bound += std::abs(c[k]) * e_bar[unknown(e, side, k)];
-                      }
-                      (through ? erc : irc) += value;
-                      const double share = bound + spread * std::abs(value);
-                      err += share;
-                      local.importance[e] = std::max(local.importance[e], share);
-                    });
-        out.erc_percent[i] = to_percent * erc;
-        out.irc_percent[i] = to_percent * irc;
-        out.error_percent[i] = to_percent * err;
-      });
-      for (const auto& l : slocals) {
-        result.counters += l.counters;
-        for (std::size_t e = 0; e < l.importance.size(); ++e) importance[e] = std::max(importance[e], l.importance[e]);
+      for (std::size_t i = 0; i < out.erc_percent.size(); ++i) {
+        out.erc_percent[i] = to_percent * values.erc[g][i];
+        out.irc_percent[i] = to_percent * values.irc[g][i];
+        out.error_percent[i] = to_percent * values.estimate[g][i];
+        worst = std::max(worst, out.error_percent[i]);
       }
-      for (double e : out.error_percent) worst_sensor = std::max(worst_sensor, e);
     }
-    result.error_by_round.push_back(worst_sensor);
-    result.max_error_percent = worst_sensor;
-    result.elements = ne;
-    result.unknowns = nu;
-    result.max_level = mesh.max_level;
+    result.error_by_round.push_back(worst);
+    result.max_error_percent = worst;
+    result.elements = t.mesh().elements.size();
+    result.unknowns = t.unknowns();
+    result.max_level = t.mesh().max_level;
     result.refinements = round;
-    if (worst_sensor <= options.tolerance_percent || round >= options.max_refinements || ne == 0) break;
-    // Split the elements whose share of some sensor's estimate is largest: those above half the
-    // largest share, and every one whose share alone exceeds a tenth of the tolerance.
-    const double top = *std::max_element(importance.begin(), importance.end());
-    std::vector<bool> split(ne, false);
-    for (std::size_t e = 0; e < ne; ++e)
-      split[e] = importance[e] >= 0.5 * top || to_percent * importance[e] > 0.1 * options.tolerance_percent;
-    refine_mesh(mesh, split);
-    t.remesh_boxes();
+    result.sweeps = fine.sweeps;
+    result.solver_change = fine.solver_change;
+    result.flux_first_bounce = fine.flux_first_bounce;
+    result.flux_absorbed = fine.flux_absorbed;
+    result.flux_escaping = fine.flux_escaping;
+    const double first = fine.flux_first_bounce;
+    result.balance_mismatch = first > 0 ? (first - fine.flux_absorbed - fine.flux_escaping) / first : 0;
+    if (worst <= opt.tolerance_percent || round >= opt.max_refinements || result.elements == 0) break;
+    coarse = std::move(fine);
   }
   return result;
 }
