@@ -81,7 +81,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
   j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
                {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
                {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
-                                                        : "automatic: twice the median distance between neighbouring sensors"},
+                                                        : "automatic: a fifth of the longest side of the box around a grid's sensors (the median over the grids)"},
                {"max_error_percent_by_round", r.error_by_round}};
   j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
                  {"reflectance_max", r.reflectance_max}};
@@ -248,7 +248,7 @@ int run_df(const DfOptions& opt) {
       for (const auto& [name, values] : {std::pair<const char*, const std::vector<double>*>{"sc_percent", &r.sc_percent},
                                          {"erc_percent", &r.erc_percent},
                                          {"irc_percent", &r.irc_percent},
-                                         {"reflection_error_bound_percent", &r.reflection_error_percent}}) {
+                                         {"reflection_error_estimate_percent", &r.reflection_error_percent}}) {
         const GridStatistics c = grid_statistics(*values);
         per[name] = {{"mean", c.mean}, {"median", c.median}, {"min", c.min}, {"max", c.max},
                      {"uniformity_min_over_mean", c.min_over_mean},
@@ -360,7 +360,7 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--components", opt->components,
                  "sc (default): the sky component alone (DF = SC); all: SC + ERC + IRC, the reflected "
                  "components by an exact-transport radiosity solution (CSV columns sc_percent, erc_percent, irc_percent, "
-                 "df_percent, reflection_error_bound_percent)")
+                 "df_percent, reflection_error_estimate_percent)")
       ->check(CLI::IsMember({"sc", "all"}));
   CLI::Option* const ground_option = df->add_option("--ground-reflectance", opt->ground_reflectance,
                  "Reflectance of the far ground: directions below the horizon that meet no surface see rho_g E_h / pi "
@@ -371,9 +371,9 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "is not met and --max-refinements allows, every element is split again (about 16 times the work)")
       ->check(CLI::PositiveNumber);
   CLI::Option* const size_option = df->add_option("--element-size", opt->element_size,
-                 "Longest element edge near the sensors and apertures (model units; default: twice the median "
-                 "distance between neighbouring sensors), growing with the distance farther away; the error estimate "
-                 "compares with elements twice as large")
+                 "Longest element edge near the sensors and apertures (model units; default: a fifth of the longest "
+                 "side of the box around a grid's sensors), growing with the distance farther away; the error "
+                 "estimate compares with elements twice as large")
       ->check(CLI::PositiveNumber);
   CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Further rounds of splitting every element while the tolerance is not met (default 0)")
       ->check(CLI::Range(0, 8));

@@ -475,15 +475,16 @@ namespace {
 template <class R>
 struct TensorEdge {
   const WFrameArc<R>& f;
-  const GTable<R>& G;
+  const GTable<R>* G;  // products only (tensor_moment with a third axis); m3 needs G(0,0), G(1,−1)
   const real::V3<R>& w;
   Tracked<R> eta_w;  // (w·m) ∫ η ds
+  // G(0,0) = θ and G(1,−1) = −log1p((cos s1 − cos s0)/cos s0), as GTable has them: the two
+  // entries m3 reads, without building the table (most of a radiosity run's per-edge work).
+  Tracked<R> g00 = exact(f.arc.length), g1m1 = exact(-real::log1p(f.dcos / f.cos0));
 
   Tracked<R> theta() const { return exact(f.arc.length); }
   // Ī_x = ∫ (x·u)/(w·u) ds = [A G(0,0) + B G(1,−1)]/c with x·u = A cos s + B sin s.
-  Tracked<R> rational_linear(const real::V3<R>& x) const {
-    return (dot(x, f.p) * G(0, 0) + dot(x, f.q) * G(1, -1)) / f.c;
-  }
+  Tracked<R> rational_linear(const real::V3<R>& x) const { return (dot(x, f.p) * g00 + dot(x, f.q) * g1m1) / f.c; }
   // ∫ Π (x_i·u) (w·u)^t ds.
   Tracked<R> product(std::initializer_list<real::V3<R>> axes, int t) const {
     std::vector<std::pair<R, R>> factors;
@@ -491,7 +492,7 @@ struct TensorEdge {
     std::vector<R> P, Pm;
     rational::trig_product(factors, P, Pm);
     const R ct = t >= 0 ? real::powi(f.c, t) : real::powi(R(1) / f.c, -t);
-    return ct * rational::expand_integral(G, P, Pm, t);
+    return ct * rational::expand_integral(*G, P, Pm, t);
   }
   // ∫ M³(x, y, m) ds (eq. 65).
   Tracked<R> m3(const real::V3<R>& x, const real::V3<R>& y) const {
@@ -508,14 +509,14 @@ Tracked<R> tensor_moment(const SphericalRegion& region, const Vec3& w_in, const 
   Tracked<R> sum;
   for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
     const WFrameArc<R> f(arc, w);
-    const GTable<R> G(f, 3, -1, 3);
     Tracked<R> eta_w = base_moment_edge(f);  // −(w·m) ∫ η ds
     eta_w.value = -eta_w.value;
-    const TensorEdge<R> e{f, G, w, eta_w};
     if (!c_in) {
-      sum += e.m3(a, b);
+      sum += TensorEdge<R>{f, nullptr, w, eta_w}.m3(a, b);
       return;
     }
+    const GTable<R> G(f, 3, -1, 3);
+    const TensorEdge<R> e{f, &G, w, eta_w};
     const real::V3<R> c(*c_in), &m = arc.normal;
     sum += dot(w, a) * e.m3(b, c);
     sum += dot(w, b) * e.m3(a, c);
@@ -548,14 +549,32 @@ std::array<Tracked<R>, 2> tensor_moment_pair(const SphericalRegion& region, cons
   Tracked<R> s1, s2;
   for_each_edge<R>(region, [&](const ArcEdge<R>& arc) {
     const WFrameArc<R> f(arc, w);
-    const GTable<R> G(f, 3, -1, 3);
     Tracked<R> eta_w = base_moment_edge(f);  // −(w·m) ∫ η ds
     eta_w.value = -eta_w.value;
-    const TensorEdge<R> e{f, G, w, eta_w};
+    const TensorEdge<R> e{f, nullptr, w, eta_w};
     s1 += e.m3(a1, b);
     s2 += e.m3(a2, b);
   });
   return {s1 / R(2), s2 / R(2)};
+}
+
+std::array<real::Tracked<double>, 3> linear_element_edge_terms(const Vec3& from, const Vec3& to, const Vec3& w,
+                                                              const Vec3& a1, const Vec3& a2, const Vec3& n) {
+  using R = double;
+  std::array<Tracked<R>, 3> out{};
+  const auto arc = arc_edge(real::V3<R>(from), real::V3<R>(to));
+  if (!arc) return out;
+  const real::V3<R> wr(w), a1r(a1), a2r(a2), nr(n);
+  // Lambert's formula: ½ θ (m·n) (lambert_sum in moments.cpp).
+  out[0].add(R(0.5) * arc->length * dot(arc->normal, nr));
+  // tensor_moment_pair's terms for this arc.
+  const WFrameArc<R> f(*arc, wr);
+  Tracked<R> eta_w = base_moment_edge(f);
+  eta_w.value = -eta_w.value;
+  const TensorEdge<R> e{f, nullptr, wr, eta_w};
+  out[1] = e.m3(a1r, nr) / R(2);
+  out[2] = e.m3(a2r, nr) / R(2);
+  return out;
 }
 
 std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,

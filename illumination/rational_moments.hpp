@@ -20,6 +20,7 @@
 #include "geometry/spherical_region.hpp"
 #include "illumination/factor_moment.hpp"
 #include "illumination/precision_escalation.hpp"
+#include "illumination/tracked_sum.hpp"
 
 namespace daylit {
 
@@ -125,5 +126,16 @@ RationalMoment quadratic_exitance_moment(const SphericalRegion& region, const Ve
 // varying element (radiosity). Same values, same accuracy; the pair escalates together.
 std::array<RationalMoment, 2> linear_exitance_moments(const SphericalRegion& region, const Vec3& w, const Vec3& a1,
                                                       const Vec3& a2, const Vec3& b, double absolute_tolerance = 0);
+
+// One great arc's share, in double, of Lambert's integral ∫ (n·u) dσ and of the pair
+// linear_exitance_moments(region, w, a1, a2, n) (before its division by |w|: w must be unit):
+// the region's values are the sums over its edges. For callers whose regions share edges (the
+// elements of a mesh, seen from one point): each shared arc computed once, negated for the
+// region that runs it the other way. Each share carries the magnitude of its terms, so that the
+// caller can test the sum's accuracy as escalate_tracked() does (and fall back to the escalating
+// functions above where it fails). The arc runs from direction `from` to `to` (any lengths,
+// w·u > 0 on it); a degenerate arc contributes nothing.
+std::array<real::Tracked<double>, 3> linear_element_edge_terms(const Vec3& from, const Vec3& to, const Vec3& w,
+                                                              const Vec3& a1, const Vec3& a2, const Vec3& n);
 
 }  // namespace daylit

@@ -11,7 +11,7 @@ void write_csv(std::FILE* out, const std::vector<GridReport>& reports) {
   const bool refined = !reports.empty() && reports.front().refinement.has_value();
   const bool reflected = !reports.empty() && !reports.front().erc_percent.empty();
   fmt::print(out, "grid,index,x,y,z,dx,dy,dz,sc_percent,{}{}{}\n",
-             reflected ? "erc_percent,irc_percent,df_percent,reflection_error_bound_percent" : "df_percent",
+             reflected ? "erc_percent,irc_percent,df_percent,reflection_error_estimate_percent" : "df_percent",
              gradient ? ",ddf_dx,ddf_dy,ddf_dz" : "", refined ? ",added,cell_area" : "");
   // 17 significant digits: the values round-trip, so exactness is not lost in the file.
   const auto row = [&](const GridReport& r, std::size_t index, const Sensor& s, double sc, double df, const Vec3* g,

@@ -38,7 +38,7 @@ struct GridReport {
 
 // One row per sensor, grids in the order given: grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent;
 // with reflected components grid,index,x,y,z,dx,dy,dz,sc_percent,erc_percent,irc_percent,
-// df_percent,reflection_error_bound_percent (df_percent last but one); with gradients, ddf_dx,ddf_dy,ddf_dz; with refinement, added,cell_area, and the added sensors
+// df_percent,reflection_error_estimate_percent (df_percent last but one); with gradients, ddf_dx,ddf_dy,ddf_dz; with refinement, added,cell_area, and the added sensors
 // after each grid's own (indices continuing; a split sensor's cell_area is 0). The columns are
 // those of the first report (df computes gradients and refinements for all grids or none).
 void write_csv(const std::string& path, const std::vector<GridReport>& reports);

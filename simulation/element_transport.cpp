@@ -1,5 +1,6 @@
 #include "simulation/element_transport.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -19,6 +20,22 @@ bool crosses_plane(const SphericalRegion& region, const Vec3& n) {
     for (const Vec3& u : loop)
       if (dot(u, n) < 0) return true;
   return false;
+}
+
+// c_k of an element from its Lambert term l0 and the pair t1, t2 (the header's formula).
+std::array<double, 3> coefficients_from(const RadiosityElement& element, const Vec3& x, double h, const Vec3& e1,
+                                        const Vec3& e2, double l0, double t1, double t2) {
+  std::array<double, 3> c{};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 g = element.basis_gradient(k);
+    c[std::size_t(k)] = (element.basis(k, x) * l0 + h * (dot(g, e1) * t1 + dot(g, e2) * t2)) / std::numbers::pi;
+  }
+  return c;
+}
+
+// The accuracy the moments need against the element's irradiance (element_irradiance_coefficients).
+double moment_tolerance(const RadiosityElement& element, double l0, double h) {
+  return std::max(kTransportTolerance * std::abs(l0), 1e-13) * std::sqrt(element.area) / h;
 }
 
 }  // namespace
@@ -62,15 +79,65 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   // the exitance on the elements costs 1e-6 and more (the error estimate says how much), so
   // digits beyond that are not worth the long double and __float128 passes (10 to 100 times the
   // double one).
-  const double size = std::sqrt(element.area);
-  const double tol = std::max(kTransportTolerance * std::abs(l0), 1e-13) * size / h;
-  const auto t = linear_exitance_moments(part, w, e1, e2, n, tol);
-  const double t1 = t[0].value, t2 = t[1].value;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3 g = element.basis_gradient(k);
-    c[k] = (element.basis(k, x) * l0 + h * (dot(g, e1) * t1 + dot(g, e2) * t2)) / std::numbers::pi;
+  const auto t = linear_exitance_moments(part, w, e1, e2, n, moment_tolerance(element, l0, h));
+  return coefficients_from(element, x, h, e1, e2, l0, t[0].value, t[1].value);
+}
+
+void unobstructed_surface_coefficients(const RadiosityMesh& mesh, std::size_t surface, const Vec3& x, const Vec3& n,
+                                       std::vector<std::array<double, 3>>& out) {
+  const RadiositySurface& surf = mesh.surfaces[surface];
+  out.assign(surf.elements.size(), {0.0, 0.0, 0.0});
+  if (surf.elements.empty()) return;
+  // The side of the surface's plane that x is on fixes w and the basis for every element.
+  const double facing = dot(surf.normal, surf.point - x);
+  if (facing == 0) return;
+  const Vec3 w = facing > 0 ? surf.normal : -1.0 * surf.normal;
+  Vec3 e1, e2;
+  orthonormal_basis(w, e1, e2);
+  // The edges' terms, computed on first use.
+  thread_local std::vector<std::array<real::Tracked<double>, 3>> terms;
+  thread_local std::vector<char> known;
+  const std::size_t edges = surf.edge_end - surf.edge_begin;
+  terms.resize(edges);
+  known.assign(edges, 0);
+  constexpr double u = 0x1p-53;
+  for (std::size_t i = 0; i < surf.elements.size(); ++i) {
+    const std::size_t e = surf.elements[i];
+    const RadiosityElement& el = mesh.elements[e];
+    const double side = dot(el.normal, el.vertices[0] - x);
+    bool separate = side == 0 || (side > 0) != (facing > 0);
+    for (const Vec3& v : el.vertices) separate = separate || dot(n, v - x) < 0;
+    std::array<real::Tracked<double>, 3> sum{};
+    if (!separate) {
+      // directions_through runs the loop the vertices' way where side = normal·(v0 − x) > 0 and
+      // the other way where side < 0: each edge's canonical terms, signed.
+      for (int k = 0; k < 3; ++k) {
+        const ElementEdge& ee = mesh.element_edges[e][std::size_t(k)];
+        const std::size_t local = ee.id - surf.edge_begin;
+        if (!known[local]) {
+          const MeshEdge& me = mesh.edges[ee.id];
+          terms[local] = linear_element_edge_terms(me.from - x, me.to - x, w, e1, e2, n);
+          known[local] = 1;
+        }
+        const bool negate = ee.reversed != (side < 0);
+        for (int j = 0; j < 3; ++j) {
+          const real::Tracked<double>& t = terms[local][std::size_t(j)];
+          sum[std::size_t(j)].add(negate ? -t.value : t.value, t.magnitude);
+        }
+      }
+      // escalate_tracked's test in double: (10 + order)·u·magnitude against the relative target
+      // 1e-13, or for the pair the absolute one.
+      const double l0 = sum[0].value, h = std::abs(side);
+      const double tol = moment_tolerance(el, l0, h);
+      const auto pair_ok = [&](const real::Tracked<double>& t) {
+        const double err = 12 * u * t.magnitude;
+        return err <= 1e-13 * std::abs(t.value) || err <= tol;
+      };
+      separate = l0 == 0 || !(11 * u * sum[0].magnitude <= 1e-13 * std::abs(l0)) || !pair_ok(sum[1]) || !pair_ok(sum[2]);
+      if (!separate) out[i] = coefficients_from(el, x, h, e1, e2, l0, sum[1].value, sum[2].value);
+    }
+    if (separate) out[i] = element_irradiance_coefficients(SphericalRegion{}, true, el, x, n);
   }
-  return c;
 }
 
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& surface_region, bool unobstructed,

@@ -5,6 +5,8 @@
 // luminaires, Part I", eq. 67: the linearly varying luminaire).
 
 #include <array>
+#include <cstddef>
+#include <vector>
 
 #include "geometry/spherical_region.hpp"
 #include "simulation/radiosity_mesh.hpp"
@@ -36,5 +38,15 @@ SphericalRegion element_region(const SphericalRegion& surface_region, bool unobs
 
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& element_part,
                                                       const RadiosityElement& element, const Vec3& x, const Vec3& n);
+
+// The coefficients of every element of `surface` at (x, n) where nothing hides any of it (the
+// `unobstructed` case above: the surface's region is its polygon, cut by the receiver's plane
+// only), in the order of its element list. The same values as element_irradiance_coefficients
+// per element (to roundoff), at about half the cost: the terms of each mesh edge are computed
+// once for the two elements that share it (linear_element_edge_terms). An element whose sums fail
+// that function's accuracy test, or which crosses the receiver's plane or lies in it, is left to
+// element_irradiance_coefficients.
+void unobstructed_surface_coefficients(const RadiosityMesh& mesh, std::size_t surface, const Vec3& x, const Vec3& n,
+                                       std::vector<std::array<double, 3>>& out);
 
 }  // namespace daylit

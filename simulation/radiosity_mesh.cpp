@@ -1,7 +1,10 @@
 #include "simulation/radiosity_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "geometry/convex_pieces.hpp"
 
@@ -56,6 +59,33 @@ double longest_edge(const RadiosityElement& e) {
   return std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
 }
 
+// The edges of every surface's elements, surface by surface (so that each surface's ids are
+// contiguous), shared where two elements have the same end points.
+void index_edges(RadiosityMesh& mesh) {
+  mesh.edges.clear();
+  mesh.element_edges.assign(mesh.elements.size(), {});
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  };
+  for (RadiositySurface& s : mesh.surfaces) {
+    s.edge_begin = mesh.edges.size();
+    std::map<std::array<double, 6>, std::uint32_t> ids;
+    for (std::size_t e : s.elements) {
+      const auto& v = mesh.elements[e].vertices;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 &a = v[std::size_t(k)], &b = v[std::size_t(k + 1) % 3];
+        const bool reversed = less(b, a);
+        const Vec3 &lo = reversed ? b : a, &hi = reversed ? a : b;
+        const auto [it, added] =
+            ids.try_emplace({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}, std::uint32_t(mesh.edges.size()));
+        if (added) mesh.edges.push_back({lo, hi});
+        mesh.element_edges[e][std::size_t(k)] = {it->second, reversed};
+      }
+    }
+    s.edge_end = mesh.edges.size();
+  }
+}
+
 }  // namespace
 
 RadiosityMesh mesh_surfaces(const std::vector<Polygon>& polygons, const std::vector<double>& reflectance,
@@ -93,6 +123,7 @@ RadiosityMesh mesh_surfaces(const std::vector<Polygon>& polygons, const std::vec
     }
     mesh.surfaces.push_back(std::move(s));
   }
+  index_edges(mesh);
   return mesh;
 }
 
@@ -111,6 +142,7 @@ void refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split) {
     else
       add(old[i]);
   }
+  index_edges(mesh);
 }
 
 }  // namespace daylit

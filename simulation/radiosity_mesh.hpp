@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -48,11 +49,26 @@ struct RadiositySurface {
   Vec3 point;                // a vertex: the plane is normal·(y − point) = 0
   double area = 0;
   std::vector<std::size_t> elements;
+  std::size_t edge_begin = 0, edge_end = 0;  // its elements' edges: ids edge_begin ≤ id < edge_end
+};
+
+// The edges of the elements: edge k of an element runs from vertices[k] to vertices[(k + 1) % 3].
+// Elements of one surface that have an edge with the same two end points share it (a T-junction,
+// where a larger element meets two smaller ones, shares nothing). Each edge runs its own way from
+// the lexicographically smaller end point (x, then y, then z) to the larger.
+struct MeshEdge {
+  Vec3 from, to;
+};
+struct ElementEdge {
+  std::uint32_t id = 0;
+  bool reversed = false;  // the element runs it from `to` to `from`
 };
 
 struct RadiosityMesh {
   std::vector<RadiositySurface> surfaces;
   std::vector<RadiosityElement> elements;
+  std::vector<MeshEdge> edges;
+  std::vector<std::array<ElementEdge, 3>> element_edges;  // per element
   int max_level = 0;
 };
 
@@ -71,7 +87,8 @@ std::array<RadiosityElement, 4> split_element(const RadiosityElement& e);
 RadiosityMesh mesh_surfaces(const std::vector<Polygon>& polygons, const std::vector<double>& reflectance,
                             const std::function<double(const RadiosityElement&)>& max_edge);
 
-// Replaces the elements flagged in `split` by their four children (surfaces' lists updated).
+// Replaces the elements flagged in `split` by their four children (surfaces' lists and the
+// edges updated).
 void refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split);
 
 }  // namespace daylit

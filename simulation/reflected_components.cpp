@@ -237,14 +237,20 @@ class Transport {
       const std::uint64_t clipped = counters.pairs_clipped;
       const SphericalRegion inside = inside_->visible_region(x, n, s, counters, opt);
       const bool inside_free = counters.pairs_clipped == clipped;
-      std::vector<SphericalRegion> inside_parts;
-      inside_parts.reserve(surf.elements.size());
-      for (std::size_t e : surf.elements) {
-        inside_parts.push_back(inside.empty() ? SphericalRegion{}
-                                              : element_region(inside, inside_free, mesh.elements[e], x, n));
-        const auto c = element_irradiance_coefficients(inside_parts.back(), mesh.elements[e], x, n);
-        sink(e, side, c, false, 0.0);
+      // Seen whole (nothing clipped): the elements' shared edges are computed once.
+      thread_local std::vector<std::array<double, 3>> inside_c;
+      if (inside.empty()) {
+        inside_c.assign(surf.elements.size(), {0.0, 0.0, 0.0});
+      } else if (inside_free) {
+        unobstructed_surface_coefficients(mesh, s, x, n, inside_c);
+      } else {
+        inside_c.resize(surf.elements.size());
+        for (std::size_t i = 0; i < surf.elements.size(); ++i) {
+          const RadiosityElement& el = mesh.elements[surf.elements[i]];
+          inside_c[i] = element_irradiance_coefficients(element_region(inside, false, el, x, n), el, x, n);
+        }
       }
+      for (std::size_t i = 0; i < surf.elements.size(); ++i) sink(surf.elements[i], side, inside_c[i], false, 0.0);
       // Through each group of apertures: only where one of its apertures may stand between x
       // and the surface (boxes, conservatively: a group that cannot is left out exactly).
       Box reach = surf_boxes_[s];
@@ -257,13 +263,19 @@ class Transport {
         const SphericalRegion through = through_[g].visible_region(x, n, s, counters, opt);
         if (through.empty()) continue;
         const bool through_free = counters.pairs_clipped == clipped_t;
+        // Both seen whole: the same region, nothing seen through the group.
+        if (through_free && inside_free && !inside.empty()) continue;
         const ApertureGroup& group = groups_[g];
         for (std::size_t i = 0; i < surf.elements.size(); ++i) {
           const RadiosityElement& el = mesh.elements[surf.elements[i]];
           const SphericalRegion part = element_region(through, through_free, el, x, n);
           if (part.empty()) continue;
           auto c = element_irradiance_coefficients(part, el, x, n);
-          const auto c_in = element_irradiance_coefficients(inside_parts[i], el, x, n);
+          // What is seen inside, by the same function as what is seen through, so that where the
+          // two regions are the same (nothing of the group in the way) the difference is 0 exactly.
+          const std::array<double, 3> c_in =
+              inside.empty() ? std::array<double, 3>{0.0, 0.0, 0.0}
+                             : element_irradiance_coefficients(element_region(inside, inside_free, el, x, n), el, x, n);
           double t = group.transmittance, spread = 0;
           if (!group.angular.empty()) {
             // T(μ) taken at the centroid's direction; its spread over the vertices' directions
@@ -513,30 +525,24 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
 }
 
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {
-  std::vector<Vec3> points;
-  for (const SensorGrid* g : grids)
-    for (const Sensor& s : g->sensors) points.push_back(s.position);
-  std::vector<double> nearest;
-  const std::size_t step = std::max<std::size_t>(1, points.size() / 512);
-  for (std::size_t i = 0; i < points.size(); i += step) {
-    double d = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < points.size(); ++j)
-      if (j != i) {
-        const double dj = norm(points[j] - points[i]);
-        if (dj > 0) d = std::min(d, dj);
-      }
-    if (std::isfinite(d)) nearest.push_back(d);
+  std::vector<double> extents;
+  for (const SensorGrid* g : grids) {
+    Box b;
+    for (const Sensor& s : g->sensors) b.add(s.position);
+    const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
+    if (side > 0) extents.push_back(side);
   }
-  if (!nearest.empty()) {
-    std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(nearest.size() / 2), nearest.end());
-    return 2 * nearest[nearest.size() / 2];
+  if (extents.empty()) {
+    Box b;
+    for (const Aperture& a : scene.apertures)
+      for (const Vec3& v : a.polygon.vertices) b.add(v);
+    for (const SensorGrid* g : grids)
+      for (const Sensor& s : g->sensors) b.add(s.position);
+    const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
+    return side > 0 ? side / 5 : 1.0;
   }
-  Box b;
-  for (const Aperture& a : scene.apertures)
-    for (const Vec3& v : a.polygon.vertices) b.add(v);
-  for (const Vec3& p : points) b.add(p);
-  const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
-  return side > 0 ? side / 4 : 1.0;
+  std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
+  return extents[extents.size() / 2] / 5;
 }
 
 namespace {

@@ -17,7 +17,7 @@ room=(--scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad
 fast=(--components all --element-size 3 --max-refinements 0 --threads 2)
 "$daylit" df "${room[@]}" "${fast[@]}" --out "$work/all.csv" --summary "$work/all.json" --quiet || fail "df on the room"
 "$daylit" df "${room[@]}" --components sc --out "$work/sc.csv" --quiet || fail "df --components sc on the room"
-head -1 "$work/all.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,erc_percent,irc_percent,df_percent,reflection_error_bound_percent' ||
+head -1 "$work/all.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,erc_percent,irc_percent,df_percent,reflection_error_estimate_percent' ||
   fail "CSV header: $(head -1 "$work/all.csv")"
 head -1 "$work/sc.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent' || fail "sc CSV header: $(head -1 "$work/sc.csv")"
 python3 - "$work/all.csv" "$work/sc.csv" "$work/all.json" <<'PY' || fail "room values or summary"
@@ -28,7 +28,7 @@ s = json.load(open(sys.argv[3]))
 assert len(a) == 80 == len(b)
 for r, q in zip(a, b):
     sc, erc, irc, df, err = (float(r[k]) for k in ("sc_percent", "erc_percent", "irc_percent", "df_percent",
-                                                    "reflection_error_bound_percent"))
+                                                    "reflection_error_estimate_percent"))
     assert sc == float(q["sc_percent"]), (r, q)          # the same sky component, bit for bit
     assert abs(df - (sc + erc + irc)) <= 1e-15 * df, r    # one rounding of the sum
     assert irc > 0 and erc >= 0 and err > 0 and all(map(math.isfinite, (sc, erc, irc, df, err))), r
@@ -41,7 +41,7 @@ assert c["mesh"]["elements"] > 0 and c["solver"]["sweeps"] > 1
 assert abs(c["energy_balance"]["relative_mismatch"]) < 1e-3, c["energy_balance"]
 assert c["error"]["max_estimate_percent"] > 0
 g = s["grids"][0]
-for k in ("sc_percent", "erc_percent", "irc_percent", "reflection_error_bound_percent"):
+for k in ("sc_percent", "erc_percent", "irc_percent", "reflection_error_estimate_percent"):
     assert k in g["components"], g["components"].keys()
 # The mean IRC of this room is about 1 DF point (issue 12; DESIGN.md §4).
 assert 0.5 < g["components"]["irc_percent"]["mean"] < 1.5, g["components"]["irc_percent"]

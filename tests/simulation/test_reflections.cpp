@@ -135,6 +135,38 @@ TEST_CASE("element transport: linear exitance against long-double quadrature of 
   CHECK(mesh_irradiance_clipped(mesh, rect, x, n, m) == Approx(double(ref)).epsilon(1e-10));
 }
 
+TEST_CASE("element transport: a surface's elements with shared edges give each element's coefficients") {
+  // A graded mesh (T-junctions included) of a 3 × 2 wall, seen from in front, from behind, at
+  // grazing distance and from points whose tangent plane cuts the wall (those elements go the
+  // per-element way): every coefficient as element_irradiance_coefficients gives it, to 1e-12
+  // of the element's largest coefficient plus 1e-15 (the two sum the same terms in another order;
+  // far elements' coefficients are differences of terms some ten times larger; the transport's own
+  // accuracy floor is 1e-13 absolute, element_transport.cpp).
+  const std::vector<Polygon> wall = {polygon({{0, 0, 0}, {3, 0, 0}, {3, 0, 2}, {0, 0, 2}}, "wall")};
+  const RadiosityMesh mesh = mesh_surfaces(wall, {0.5}, [](const RadiosityElement& e) {
+    return 0.3 + 0.4 * e.point(1.0 / 3, 1.0 / 3, 1.0 / 3).x;
+  });
+  REQUIRE(mesh.edges.size() < 3 * mesh.elements.size());
+  const struct {
+    Vec3 x, n;
+  } receivers[] = {{{1.2, 1.0, 0.7}, normalized(Vec3{0.1, -1, 0.2})}, {{1.7, -0.8, 1.1}, normalized(Vec3{0, 1, 0})},
+                   {{0.4, 1e-3, 0.3}, normalized(Vec3{0.3, -1, 0})},  {{2.0, 0.5, 1.0}, normalized(Vec3{1, 0, 0})},
+                   {{-1.0, 2.0, 0.5}, normalized(Vec3{1, -1, 0})}};
+  std::vector<std::array<double, 3>> shared;
+  for (const auto& r : receivers) {
+    unobstructed_surface_coefficients(mesh, 0, r.x, r.n, shared);
+    REQUIRE(shared.size() == mesh.surfaces[0].elements.size());
+    for (std::size_t i = 0; i < shared.size(); ++i) {
+      const auto one = element_irradiance_coefficients(SphericalRegion{}, true, mesh.elements[mesh.surfaces[0].elements[i]],
+                                                       r.x, r.n);
+      const double scale = std::max({std::abs(one[0]), std::abs(one[1]), std::abs(one[2]), 1e-300});
+      INFO("receiver " << (&r - receivers) << ", element " << i);
+      for (int k = 0; k < 3; ++k)
+        CHECK(std::abs(shared[i][std::size_t(k)] - one[std::size_t(k)]) <= 1e-12 * scale + 1e-15);
+    }
+  }
+}
+
 TEST_CASE("linear_exitance_moments: the pair equals two single moments") {
   // A near and a grazing receiver (the pair shares the edges' Clausen functions, nothing else).
   for (const Vec3& x : {Vec3{0.3, 0.2, -1.0}, Vec3{-2.0, 0.5, -1e-3}}) {
