@@ -1,7 +1,7 @@
 // `daylit bench reflections`: error against run time of the reflected components (ERC + IRC,
 // DESIGN.md §4, §8). Today it measures the Monte Carlo path tracer (bench/path_tracer.hpp) at
-// N = 16 … 4096 paths per sensor and B = 1 … 16 bounces; the radiosity's rows join it in one place
-// (below, "The radiosity's rows") once its API lands.
+// N = 16 … 4096 paths per sensor and B = 1 … 16 bounces, and the radiosity
+// (simulation/reflected_components.hpp) at element sizes 4, 2, 1 and 1/2 times its automatic one.
 //
 // Cases (bench/reflection_cases.hpp): two with closed forms (a plate over upward sensors; a box
 // with an open ceiling, Howell's factors), whose reference is exact; and two rooms without one, the
@@ -34,9 +34,11 @@
 #include "bench/reflection_cases.hpp"
 #include "geometry/error.hpp"
 #include "materials/scene_materials.hpp"
+#include "materials/surface_reflectance.hpp"
 #include "report/plot.hpp"
 #include "report/progress_bar.hpp"
 #include "report/staged_output.hpp"
+#include "simulation/reflected_components.hpp"
 
 namespace daylit::cli {
 
@@ -140,6 +142,45 @@ Row measure(const ReflectionCase& c, const Reference& ref, long samples, int bou
           error / rms(reflected_ref), rms(erc), rms(irc), rms(se), ref.description, ref.rms_standard_error};
 }
 
+// The radiosity (simulation/reflected_components.hpp) on the case at `size_factor` times its
+// automatic element size (reflected_components.hpp: a fifth of the grid's extent), on one
+// thread, its setup (visibility engines, mesh) included in the time; `samples` holds its element
+// count, `bounces` its Gauss–Seidel sweeps. Its own error estimate is not in the row: the row
+// measures the actual error against the reference.
+Row measure_radiosity(const ReflectionCase& c, const Reference& ref, double size_factor) {
+  std::vector<double> reflectance;
+  for (const Polygon& p : c.scene.occluders) {
+    const auto it = c.scene.materials.find(p.material);
+    reflectance.push_back(surface_reflectance(it == c.scene.materials.end() ? nullptr : &it->second).reflectance);
+  }
+  SensorGrid grid;
+  grid.name = c.name;
+  grid.sensors = c.sensors;
+  ReflectionOptions o;
+  o.sky = c.sky;
+  o.ground_reflectance = c.ground_reflectance;
+  o.element_size = size_factor * automatic_element_size(c.scene, {&grid});
+  ReflectionResult result;
+  double cpu = 0;
+  tbb::task_arena(1).execute([&] {
+    const double t0 = thread_cpu_seconds();
+    const VisibilityEngine engine(c.scene, GeometryMode::exact);
+    result = reflected_components(c.scene, reflectance, engine, {&grid}, o);
+    cpu = thread_cpu_seconds() - t0;
+  });
+  std::vector<double> reflected, erc, irc, reflected_ref;
+  for (std::size_t i = 0; i < c.sensors.size(); ++i) {
+    const double e = result.grids[0].erc_percent[i], r = result.grids[0].irc_percent[i];
+    reflected.push_back(e + r - ref.erc[i] - ref.irc[i]);
+    erc.push_back(e - ref.erc[i]);
+    irc.push_back(r - ref.irc[i]);
+    reflected_ref.push_back(ref.erc[i] + ref.irc[i]);
+  }
+  const double error = rms(reflected);
+  return {c.name, "radiosity", long(result.elements), result.sweeps, c.sensors.size(), cpu / double(c.sensors.size()),
+          error, error / rms(reflected_ref), rms(erc), rms(irc), 0.0, ref.description, ref.rms_standard_error};
+}
+
 ReflectionCase office_case(const std::string& samples_dir, std::size_t stride) {
   const std::filesystem::path base = std::filesystem::path(samples_dir) / "office";
   if (!std::filesystem::exists(base / "scene.rad"))
@@ -183,10 +224,12 @@ int run_bench_reflections(const BenchOptions& opt) {
         status.show(fmt::format("bench reflections: {}: N = {}, B = {}", c.name, n, b));
         rows.push_back(measure(c, references.back(), n, b));
       }
-    // The radiosity's rows: once simulation/'s radiosity (branch `reflections`) lands, add here
-    // one row per refinement level of its mesh for this case (method "radiosity", the level in
-    // `samples`, its iteration count in `bounces`), measured against the same reference and
-    // timed the same way (one thread, thread CPU time per sensor, its setup included).
+    // The radiosity's rows: 4, 2, 1 and 1/2 times its automatic element size (--quick: 8 and 4),
+    // against the same reference, timed the same way.
+    for (const double factor : opt.quick ? std::vector<double>{8, 4} : std::vector<double>{4, 2, 1, 0.5}) {
+      status.show(fmt::format("bench reflections: {}: radiosity, {} x the automatic element size", c.name, factor));
+      rows.push_back(measure_radiosity(c, references.back(), factor));
+    }
   }
   status.clear();
 
@@ -234,8 +277,8 @@ int run_bench_reflections(const BenchOptions& opt) {
   }
   Plot plot;
   plot.title = "Reflected components (ERC + IRC): error against run time";
-  plot.subtitle = fmt::format("path tracer, N = {} ... {} paths per sensor; CPU time per sensor on one thread", s.samples.front(),
-                              s.samples.back());
+  plot.subtitle = fmt::format("path tracer, N = {} ... {} paths per sensor (circles); radiosity (squares); CPU time per "
+                              "sensor on one thread", s.samples.front(), s.samples.back());
   plot.x_label = "CPU time per sensor (s)";
   plot.y_label = "RMS error of ERC + IRC / RMS of the reference";
   plot.y_floor = 1e-6;
@@ -245,8 +288,14 @@ int run_bench_reflections(const BenchOptions& opt) {
     PlotSeries series{fmt::format("{}, B = {} ({})", cases[k].name, full, cases[k].exact ? "closed form" : "vs long run"), {},
                       colours[k % colours.size()], PlotMarker::circle, true};
     for (const Row& r : rows)
-      if (r.case_name == cases[k].name && r.bounces == full) series.points.push_back({r.cpu_s_per_sensor, r.reflected_normalised});
+      if (r.method == "path_tracer" && r.case_name == cases[k].name && r.bounces == full)
+        series.points.push_back({r.cpu_s_per_sensor, r.reflected_normalised});
     plot.series.push_back(series);
+    PlotSeries radiosity{fmt::format("{}, radiosity", cases[k].name), {}, colours[k % colours.size()], PlotMarker::square, true};
+    for (const Row& r : rows)
+      if (r.method == "radiosity" && r.case_name == cases[k].name)
+        radiosity.points.push_back({r.cpu_s_per_sensor, std::max(r.reflected_normalised, 1e-6)});
+    plot.series.push_back(radiosity);
   }
   const PlotMarker markers[] = {PlotMarker::triangle, PlotMarker::square, PlotMarker::diamond};
   std::size_t m = 0;
@@ -254,7 +303,8 @@ int run_bench_reflections(const BenchOptions& opt) {
     if (b == full || m >= std::size(markers)) continue;
     PlotSeries series{fmt::format("{}, B = {} (truncated)", cases.back().name, b), {}, colours[3], markers[m++], true};
     for (const Row& r : rows)
-      if (r.case_name == cases.back().name && r.bounces == b) series.points.push_back({r.cpu_s_per_sensor, r.reflected_normalised});
+      if (r.method == "path_tracer" && r.case_name == cases.back().name && r.bounces == b)
+        series.points.push_back({r.cpu_s_per_sensor, r.reflected_normalised});
     plot.series.push_back(series);
   }
   plot.notes = {"Rooms without a closed form are measured against a long path-traced run (reflections_reference.csv), whose own",
