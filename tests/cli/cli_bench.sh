@@ -178,16 +178,27 @@ done
 csv=$out/reflections_error_vs_time.csv
 expected='case,method,samples,bounces,sensors,cpu_s_per_sensor,reflected_rms_error_percent,reflected_normalised_rms_error,erc_rms_error_percent,irc_rms_error_percent,standard_error_rms_percent,reference,reference_standard_error_rms_percent'
 [ "$(head -n 1 "$csv")" = "$expected" ] || fail "header of $csv: $(head -n 1 "$csv")"
+# The radiosity's two rows per case (samples = elements): exact to roundoff on the canopy (a
+# uniform exitance, one bounce: linear elements carry it exactly), falling with refinement on the
+# open-ceiling box.
 report=$(awk -F, -v finite="$finite" 'NR > 1 {
-    rows[$1]++
-    if (!($6 > 0)) print "no time for " $1 " N = " $3 " B = " $4
+    if (!($6 > 0)) print "no time for " $1 " " $2 " N = " $3 " B = " $4
     for (i = 7; i <= 11; i++) if ($i !~ finite) print "non-finite field " i " for " $1 " N = " $3 " B = " $4 ": " $i
+    if ($2 == "radiosity") {
+      radiosity[$1]++
+      if (radiosity[$1] == 1) coarse[$1] = $7; else fine[$1] = $7
+      next
+    }
+    rows[$1]++
     if ($4 + 0 > bmax) bmax = $4 + 0
     err[$1 "," $3 "," $4] = $7; se[$1 "," $3 "," $4] = $11; ref[$1] = $12
   }
   END {
     split("canopy open_ceiling_box office room_4x5x3", cases, " ")
-    for (i in cases) if (rows[cases[i]] != 6) print rows[cases[i]] + 0 " rows for " cases[i] " (expected 6)"
+    for (i in cases) if (rows[cases[i]] != 6) print rows[cases[i]] + 0 " path tracer rows for " cases[i] " (expected 6)"
+    for (i in cases) if (radiosity[cases[i]] != 2) print radiosity[cases[i]] + 0 " radiosity rows for " cases[i] " (expected 2)"
+    if (!(coarse["canopy"] < 1e-12 && fine["canopy"] < 1e-12)) print "canopy: radiosity off by " coarse["canopy"] ", " fine["canopy"]
+    if (!(fine["open_ceiling_box"] < 0.5 * coarse["open_ceiling_box"])) print "open_ceiling_box: radiosity error does not fall: " coarse["open_ceiling_box"] " -> " fine["open_ceiling_box"]
     split("canopy open_ceiling_box", exact, " ")
     for (i in exact) {
       c = exact[i]
