@@ -148,11 +148,7 @@ Row measure(const ReflectionCase& c, const Reference& ref, long samples, int bou
 // count, `bounces` its Gauss–Seidel sweeps. Its own error estimate is not in the row: the row
 // measures the actual error against the reference.
 Row measure_radiosity(const ReflectionCase& c, const Reference& ref, double size_factor) {
-  std::vector<double> reflectance;
-  for (const Polygon& p : c.scene.occluders) {
-    const auto it = c.scene.materials.find(p.material);
-    reflectance.push_back(surface_reflectance(it == c.scene.materials.end() ? nullptr : &it->second).reflectance);
-  }
+  const std::vector<double> reflectance = scene_reflectances(c.scene).reflectance;
   SensorGrid grid;
   grid.name = c.name;
   grid.sensors = c.sensors;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/model_options.hpp"
+#include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
 #include "report/honeybee_results.hpp"
@@ -43,14 +44,7 @@ struct DfOptions {
   bool quiet = false;
   bool gradient = false, refine = false;
   double refine_tolerance = 0.01;  // DF percentage points of a cell's mean
-  // The sky component alone by default for now: the reflected components cost minutes on the
-  // office sample (see the README), which the quick-start command should not.
-  std::string components = "sc";
-  double ground_reflectance = 0.2;
-  double reflection_tolerance = 0.05;  // DF percentage points, every sensor's ERC + IRC
-  double element_size = 0;             // model units; 0: automatic (reflected_components.hpp)
-  int max_refinements = 0;
-  std::vector<std::string> reflection_options_given;  // names, for the notice with --components sc
+  ReflectionCliOptions reflections;
   double median_diffuse_lux = 0;   // EN 17037's E_v,d,med; 0: no EN 17037 block
 };
 
@@ -58,70 +52,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std::string, SurfaceReflectance>& materials,
-                                  const DfOptions& opt, double run_time_s) {
-  nlohmann::json j;
-  j["computed"] = {"sc", "erc", "irc"};
-  j["df_percent_is"] = "sc_percent + erc_percent + irc_percent";
-  j["ground_reflectance"] = opt.ground_reflectance;
-  nlohmann::json mats;
-  for (const auto& [name, m] : materials) mats[name] = {{"reflectance", m.reflectance}, {"description", m.description}};
-  j["materials"] = mats;
-  if (r.black) {
-    j["radiosity"] = "none: every surface is black and the ground reflectance is 0, so ERC = IRC = 0 exactly";
-    return j;
-  }
-  j["method"] =
-      "radiosity over every reflecting polygon, both sides, triangles of linearly varying exitance (3 nodes inside "
-      "each, the degree-2 rule's points); first bounce exact (sky and far ground through the apertures, and seen "
-      "directly through a box around the model); transport exact per element (Chen-Arvo linear luminaire over the "
-      "exactly visible part, occluders cut to the luminaire's side of its plane); ERC: far ground and surfaces seen "
-      "through apertures (weighted by their transmittance; glass: T at the element's centre direction), IRC: "
-      "surfaces seen inside; Gauss-Seidel to roundoff";
-  j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
-               {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
-               {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
-                                                        : "automatic: a fifth of the longest side of the box around a grid's sensors (the median over the grids)"},
-               {"max_error_percent_by_round", r.error_by_round}};
-  j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
-                 {"reflectance_max", r.reflectance_max}};
-  j["error"] = {
-      {"tolerance_percent", opt.reflection_tolerance},
-      {"max_estimate_percent", r.max_error_percent},
-      {"met", r.max_error_percent <= opt.reflection_tolerance},
-      {"how",
-       "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from a mesh of "
-       "elements twice as large (the reported one is its uniform split), the two differences added, plus, through "
-       "glass, the spread of T over each element's directions times what it gives. It covers the error where halving "
-       "the elements at least halves it; linear elements do better (second order where the exitance is smooth), so "
-       "the actual error is usually a fraction of it"}};
-  j["energy_balance"] = {
-      {"first_bounce_flux", r.flux_first_bounce},
-      {"absorbed_flux", r.flux_absorbed},
-      {"escaping_flux", r.flux_escaping},
-      {"relative_mismatch", r.balance_mismatch},
-      {"how",
-       "per unit zenith luminance: what the sky and far ground put on all surfaces = what they absorb + what leaves "
-       "them unreceived, the last from each side's own view of the others (reciprocity), independently of the rows "
-       "that carried the light; the mismatch is the mesh's and falls under refinement"}};
-  j["left_out"] = {
-      {"direct_sky_at_sensors", "sensors see the sky through the apertures only (SC); a sensor outside the model "
-                                "sees no sky directly"},
-      {"receivers_seeing_no_sky_directly", r.receivers_direct_empty},
-      {"receivers", r.receivers_direct},
-      {"surface_sides_solved", r.sides_solved},
-      {"surface_sides_left_out", r.sides_left_out},
-      {"surface_sides_left_out_why", "no light from them reaches a sensor, directly or by reflection (decided by "
-                                     "which side of each plane the sensors and surfaces lie on; exact: the values "
-                                     "solved are those of the whole system)"},
-      {"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"}};
-  j["run_time_s"] = run_time_s;
-  return j;
-}
-
 int run_df(const DfOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (opt.components == "all" && (opt.gradient || opt.refine))
+  if (opt.reflections.all() && (opt.gradient || opt.refine))
     throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
@@ -135,9 +68,7 @@ int run_df(const DfOptions& opt) {
   const std::vector<SensorGrid>& grids = model.grids;
   if (!opt.quiet) {
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
-    if (opt.components == "sc")
-      for (const auto& name : opt.reflection_options_given)
-        std::cerr << "notice: " << name << " is not used: the reflected components are computed with --components all\n";
+    notice_unused_reflection_options(opt.reflections, opt.quiet);
   }
 
   const VisibilityEngine engine(scene, mode, opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built);
@@ -166,22 +97,13 @@ int run_df(const DfOptions& opt) {
   // ---- Reflected components (DESIGN.md §4), over all grids at once: one radiosity solution.
   std::optional<ReflectionResult> reflections;
   std::map<std::string, SurfaceReflectance> used_materials;
-  if (opt.components == "all") {
-    std::vector<double> reflectance;
-    for (const Polygon& p : scene.occluders) {
-      const auto it = scene.materials.find(p.material);
-      const Material* m = it == scene.materials.end() ? nullptr : &it->second;
-      const SurfaceReflectance r = surface_reflectance(m);
-      reflectance.push_back(r.reflectance);
-      used_materials.emplace(m ? m->name : p.material.empty() ? "void" : p.material, r);
-    }
-    ReflectionOptions ro;
+  if (opt.reflections.all()) {
+    SceneReflectances scene_rho = scene_reflectances(scene);
+    const std::vector<double>& reflectance = scene_rho.reflectance;
+    used_materials = std::move(scene_rho.materials);
+    ReflectionOptions ro = reflection_options(opt.reflections);
     ro.sky = sky;
     ro.mode = mode;
-    ro.ground_reflectance = opt.ground_reflectance;
-    ro.tolerance_percent = opt.reflection_tolerance;
-    ro.element_size = opt.element_size;
-    ro.max_refinements = opt.max_refinements;
     std::vector<const SensorGrid*> grid_ptrs;
     for (const auto& g : grids) grid_ptrs.push_back(&g);
     const auto tr = std::chrono::steady_clock::now();
@@ -217,15 +139,18 @@ int run_df(const DfOptions& opt) {
   summary["geometry"] = opt.geometry;
   summary["subtraction_order"] = opt.order;
   summary["threads"] = threads;
-  if (reflections)
-    summary["components"] = reflection_summary(*reflections, used_materials, opt, reflections_time_s);
-  else
+  if (reflections) {
+    summary["components"] = reflection_summary(*reflections, used_materials, opt.reflections, reflections_time_s,
+                                               "per unit zenith luminance");
+    summary["components"]["df_percent_is"] = "sc_percent + erc_percent + irc_percent";
+  } else {
     summary["components"] = {
         {"computed", {"sc"}},
         {"left_out",
          {{"erc", "externally reflected component: not computed (--components sc)"},
           {"irc", "internally reflected component: not computed (--components sc)"}}},
         {"df_percent_is", "sc_percent"}};
+  }
   if (model.site) summary["site"] = site_json(*model.site, opt.files.site);
   if (model.context) summary["context"] = context_json(*model.context, opt.files.context);
   summary["scene"] = scene_json(scene, engine);
@@ -357,37 +282,14 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--refine-tolerance", opt->refine_tolerance,
                  "Estimated error of a cell's mean DF above which --refine splits it (DF percentage points; default 0.01)")
       ->check(CLI::PositiveNumber);
-  df->add_option("--components", opt->components,
-                 "sc (default): the sky component alone (DF = SC); all: SC + ERC + IRC, the reflected "
-                 "components by an exact-transport radiosity solution (CSV columns sc_percent, erc_percent, irc_percent, "
-                 "df_percent, reflection_error_estimate_percent)")
-      ->check(CLI::IsMember({"sc", "all"}));
-  CLI::Option* const ground_option = df->add_option("--ground-reflectance", opt->ground_reflectance,
-                 "Reflectance of the far ground: directions below the horizon that meet no surface see rho_g E_h / pi "
-                 "(default 0.2, as gensky's ground glow); the model's own ground polygons are surfaces")
-      ->check(CLI::Range(0.0, 0.999999));
-  CLI::Option* const tolerance_option = df->add_option("--reflection-tolerance", opt->reflection_tolerance,
-                 "Target of every sensor's estimated error of ERC + IRC (DF percentage points; default 0.05): while it "
-                 "is not met and --max-refinements allows, every element is split again (about 16 times the work)")
-      ->check(CLI::PositiveNumber);
-  CLI::Option* const size_option = df->add_option("--element-size", opt->element_size,
-                 "Longest element edge near the sensors and apertures (model units; default: a fifth of the longest "
-                 "side of the box around a grid's sensors), growing with the distance farther away; the error "
-                 "estimate compares with elements twice as large")
-      ->check(CLI::PositiveNumber);
-  CLI::Option* const rounds_option = df->add_option("--max-refinements", opt->max_refinements, "Further rounds of splitting every element while the tolerance is not met (default 0)")
-      ->check(CLI::Range(0, 8));
+  add_reflection_options(*df, opt->reflections, "DF");
   df->add_option("--median-diffuse-lux", opt->median_diffuse_lux,
                  "The site's median diffuse horizontal illuminance over the daylight hours (lux; EN 17037 Table A.3): "
                  "the summary then assesses each grid by EN 17037's daylight-factor method (targets 100 E/E_med for its "
                  "three levels, over 50 % and 95 % of the sensors)")
       ->check(CLI::PositiveNumber);
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
-  return [opt, ground_option, tolerance_option, size_option, rounds_option] {
-    for (const CLI::Option* o : {ground_option, tolerance_option, size_option, rounds_option})
-      if (o->count() > 0) opt->reflection_options_given.push_back(o->get_name());
-    return run_df(*opt);
-  };
+  return [opt] { return run_df(*opt); };
 }
 
 }  // namespace daylit::cli

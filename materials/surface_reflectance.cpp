@@ -76,4 +76,16 @@ SurfaceReflectance surface_reflectance(const Material* material) {
   return out;
 }
 
+SceneReflectances scene_reflectances(const Scene& scene) {
+  SceneReflectances out;
+  for (const Polygon& p : scene.occluders) {
+    const auto it = scene.materials.find(p.material);
+    const Material* m = it == scene.materials.end() ? nullptr : &it->second;
+    const SurfaceReflectance r = surface_reflectance(m);
+    out.reflectance.push_back(r.reflectance);
+    out.materials.emplace(m ? m->name : p.material.empty() ? "void" : p.material, r);
+  }
+  return out;
+}
+
 }  // namespace daylit

@@ -18,10 +18,13 @@
 //
 // grey(RGB) is Radiance's luminance weighting (radiance_luminance.hpp).
 
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "geometry/rad_reader.hpp"
+#include "geometry/scene.hpp"
 
 namespace daylit {
 
@@ -37,5 +40,13 @@ struct SurfaceReflectance {
 // for a reflectance outside [0, 1) (a surface reflecting all the light it receives makes the
 // radiosity equation singular; Radiance's materials above 1 create light).
 SurfaceReflectance surface_reflectance(const Material* material);
+
+// Every occluder's reflectance (Scene::occluders order) from its material, and what was used,
+// by material name ("void" for polygons without one): the reflected components' input.
+struct SceneReflectances {
+  std::vector<double> reflectance;
+  std::map<std::string, SurfaceReflectance> materials;
+};
+SceneReflectances scene_reflectances(const Scene& scene);
 
 }  // namespace daylit

@@ -108,6 +108,22 @@ SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene
 
 }  // namespace
 
+double daylight_irradiance(const DaylightConditions& c, const Aperture* aperture, const SphericalRegion& region,
+                           const Vec3& n) {
+  if (region.empty()) return 0;
+  const Aperture open{Polygon{}, 1.0};
+  const Aperture& through = aperture ? *aperture : open;
+  SensorIlluminance s;
+  add_sky(c, through, region, n, s);
+  double e = s.sky * c.zenith_luminance;
+  if (c.has_sun()) e += sun_through(c, through, region, n);
+  return e;
+}
+
+double unobstructed_daylight_lux(const DaylightConditions& c) {
+  return c.zenith_luminance * unobstructed_sky_irradiance(c) + (c.has_sun() ? c.direct_normal * c.sun.z : 0.0);
+}
+
 double unobstructed_sky_irradiance(const DaylightConditions& c) {
   switch (c.sky) {
     case DaylightConditions::Sky::uniform: return unobstructed_horizontal_irradiance(SkyModel::uniform);

@@ -49,6 +49,18 @@ struct DaylightConditions {
 // normalisation (the same cubature, done once when the PerezSky is built).
 double unobstructed_sky_irradiance(const DaylightConditions& conditions);
 
+// The illuminance (lux) on a receiver with unit normal n from the sky and the sun seen in `region`
+// (above the horizon) through `aperture` (its transmittance, glass T(μ) included) or, where
+// `aperture` is nullptr, directly: what the reflected components' first bounce needs from these
+// conditions (simulation/reflected_components.hpp, ReflectionOptions::light). The sky's
+// cubature error, where it has one, is not returned.
+double daylight_irradiance(const DaylightConditions& conditions, const Aperture* aperture, const SphericalRegion& region,
+                           const Vec3& n);
+
+// The unobstructed horizontal illuminance (lux) of the sky and the sun together: what sets the far
+// ground's luminance ρ_g·E/π (as gensky's ground glow, which includes the sun).
+double unobstructed_daylight_lux(const DaylightConditions& conditions);
+
 struct IlluminanceResult {
   std::vector<double> sky_lux, sun_lux;  // per sensor, in grid order
   // Per sensor, a bound on |computed − true| sky illuminance: 0 for the overcast and uniform skies

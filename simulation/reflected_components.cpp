@@ -102,7 +102,7 @@ class Transport {
             bool every_side)
       : scene_(scene), reflectance_(reflectance), engine_(engine), options_(options), groups_(group_apertures(scene)),
         coarsening_(coarsening) {
-    e_out_ = unobstructed_horizontal_irradiance(options.sky);
+    e_out_ = options.light ? options.light_horizontal : unobstructed_horizontal_irradiance(options.sky);
     ground_luminance_ = options.ground_reflectance * e_out_ / kPi;
     // What the mesh is graded towards: the apertures and the sensors.
     for (const Aperture& a : scene.apertures) aperture_boxes_.push_back(box_of(a.polygon.vertices));
@@ -167,22 +167,20 @@ class Transport {
       const SphericalRegion all = engine_.visible_region(x, n, a, c, full);
       if (all.empty()) continue;
       const SphericalRegion above = above_horizon(engine_, x, n, a, c, half);
-      if (ap.angular_transmittance.empty()) {
-        if (with_sky && !above.empty()) out.sky += ap.transmittance * sky_irradiance(above, n, options_.sky);
-        if (ground_luminance_ > 0)
-          out.ground += ap.transmittance * ground_luminance_ *
-                        (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
-      } else {
-        const Vec3 pane = normalized(newell_normal(ap.polygon.vertices));
-        if (with_sky && !above.empty())
-          out.sky += sky_irradiance_through_glazing(above, n, options_.sky, pane, ap.angular_transmittance);
-        if (ground_luminance_ > 0) {
-          const auto glazed = [&](const SphericalRegion& r) {
-            return r.empty() ? 0.0
-                             : sky_irradiance_through_glazing(r, n, SkyModel::uniform, pane, ap.angular_transmittance);
-          };
-          out.ground += ground_luminance_ * (glazed(all) - glazed(above));
-        }
+      const bool glazed = !ap.angular_transmittance.empty();
+      const Vec3 pane = glazed ? normalized(newell_normal(ap.polygon.vertices)) : Vec3{};
+      if (with_sky && !above.empty())
+        out.sky += options_.light ? options_.light(above, n, &ap)
+                   : glazed       ? sky_irradiance_through_glazing(above, n, options_.sky, pane, ap.angular_transmittance)
+                                  : ap.transmittance * sky_irradiance(above, n, options_.sky);
+      if (ground_luminance_ > 0) {
+        // The far ground: what is seen through the aperture minus what of it is above the horizon.
+        const auto seen = [&](const SphericalRegion& r) {
+          if (r.empty()) return 0.0;
+          return glazed ? sky_irradiance_through_glazing(r, n, SkyModel::uniform, pane, ap.angular_transmittance)
+                        : ap.transmittance * lambert(r, n);
+        };
+        out.ground += ground_luminance_ * (seen(all) - seen(above));
       }
     }
     return out;
@@ -203,7 +201,7 @@ class Transport {
       if (all.empty()) continue;
       empty = false;
       const SphericalRegion above = above_horizon(*sky_box_, x, n, f, c, half);
-      if (!above.empty()) e += sky_irradiance(above, n, options_.sky);
+      if (!above.empty()) e += options_.light ? options_.light(above, n, nullptr) : sky_irradiance(above, n, options_.sky);
       if (ground_luminance_ > 0) e += ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
     }
     return e;

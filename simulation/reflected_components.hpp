@@ -33,6 +33,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <string>
 #include <vector>
@@ -48,6 +49,14 @@ namespace daylit {
 
 struct ReflectionOptions {
   SkyModel sky = SkyModel::cie_overcast;
+  // Another sky (and the sun) for the first bounce, where set (daylit illuminance): the
+  // irradiance on a receiver with normal n from the directions `above` (above the horizon) seen
+  // through `aperture` (nullptr: directly), in the units of light_horizontal, the unobstructed
+  // horizontal irradiance, which also sets the far ground's luminance ρ_g·light_horizontal/π
+  // and the unit of the results (percent of it, as DF is of E_out). Unset: `sky`, per unit
+  // zenith luminance.
+  std::function<double(const SphericalRegion& above, const Vec3& n, const Aperture* aperture)> light;
+  double light_horizontal = 0;
   GeometryMode mode = GeometryMode::exact;
   double ground_reflectance = 0.2;   // ρ_g of the far ground, in [0, 1)
   double tolerance_percent = 0.05;   // target of every sensor's error estimate, DF points

@@ -1,0 +1,115 @@
+#include "cli/reflection_options.hpp"
+
+#include <iostream>
+
+namespace daylit::cli {
+
+void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const std::string& what) {
+  command
+      .add_option("--components", o.components,
+                  "sc (default): the sky component alone (direct light only); all: also the externally and internally "
+                  "reflected components (ERC, IRC) of the " + what + ", by an exact-transport radiosity solution, with "
+                  "an error estimate per sensor")
+      ->check(CLI::IsMember({"sc", "all"}));
+  o.options.push_back(command.add_option("--ground-reflectance", o.ground_reflectance,
+                                         "Reflectance of the far ground: directions below the horizon that meet no "
+                                         "surface see rho_g E_h / pi (default 0.2, as gensky's ground glow); the model's "
+                                         "own ground polygons are surfaces")
+                          ->check(CLI::Range(0.0, 0.999999)));
+  o.options.push_back(command.add_option("--reflection-tolerance", o.tolerance,
+                                         "Target of every sensor's estimated error of ERC + IRC, in percent of the "
+                                         "unobstructed horizontal " + what + " (DF points; default 0.05): while it is "
+                                         "not met and --max-refinements allows, every element is split again (about "
+                                         "16 times the work)")
+                          ->check(CLI::PositiveNumber));
+  o.options.push_back(command.add_option("--element-size", o.element_size,
+                                         "Longest element edge near the sensors and apertures (model units; default: a "
+                                         "fifth of the longest side of the box around a grid's sensors), growing with "
+                                         "the distance farther away; the error estimate compares with elements twice "
+                                         "as large")
+                          ->check(CLI::PositiveNumber));
+  o.options.push_back(command.add_option("--max-refinements", o.max_refinements,
+                                         "Further rounds of splitting every element while the tolerance is not met "
+                                         "(default 0)")
+                          ->check(CLI::Range(0, 8)));
+}
+
+ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
+  ReflectionOptions r;
+  r.ground_reflectance = o.ground_reflectance;
+  r.tolerance_percent = o.tolerance;
+  r.element_size = o.element_size;
+  r.max_refinements = o.max_refinements;
+  return r;
+}
+
+void notice_unused_reflection_options(const ReflectionCliOptions& o, bool quiet) {
+  if (quiet || o.all()) return;
+  for (const CLI::Option* option : o.options)
+    if (option->count() > 0)
+      std::cerr << "notice: " << option->get_name()
+                << " is not used: the reflected components are computed with --components all\n";
+}
+
+nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std::string, SurfaceReflectance>& materials,
+                                  const ReflectionCliOptions& opt, double run_time_s,
+                                  const std::string& unit) {
+  nlohmann::json j;
+  j["computed"] = {"sc", "erc", "irc"};
+  j["ground_reflectance"] = opt.ground_reflectance;
+  nlohmann::json mats;
+  for (const auto& [name, m] : materials) mats[name] = {{"reflectance", m.reflectance}, {"description", m.description}};
+  j["materials"] = mats;
+  if (r.black) {
+    j["radiosity"] = "none: every surface is black and the ground reflectance is 0, so ERC = IRC = 0 exactly";
+    return j;
+  }
+  j["method"] =
+      "radiosity over every reflecting polygon, both sides, triangles of linearly varying exitance (3 nodes inside "
+      "each, the degree-2 rule's points); first bounce exact (sky and far ground through the apertures, and seen "
+      "directly through a box around the model); transport exact per element (Chen-Arvo linear luminaire over the "
+      "exactly visible part, occluders cut to the luminaire's side of its plane); ERC: far ground and surfaces seen "
+      "through apertures (weighted by their transmittance; glass: T at the element's centre direction), IRC: "
+      "surfaces seen inside; Gauss-Seidel to roundoff";
+  j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
+               {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
+               {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
+                                                        : "automatic: a fifth of the longest side of the box around a grid's sensors (the median over the grids)"},
+               {"max_error_percent_by_round", r.error_by_round}};
+  j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
+                 {"reflectance_max", r.reflectance_max}};
+  j["error"] = {
+      {"tolerance_percent", opt.tolerance},
+      {"max_estimate_percent", r.max_error_percent},
+      {"met", r.max_error_percent <= opt.tolerance},
+      {"how",
+       "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from a mesh of "
+       "elements twice as large (the reported one is its uniform split), the two differences added, plus, through "
+       "glass, the spread of T over each element's directions times what it gives. It covers the error where halving "
+       "the elements at least halves it; linear elements do better (second order where the exitance is smooth), so "
+       "the actual error is usually a fraction of it"}};
+  j["energy_balance"] = {
+      {"first_bounce_flux", r.flux_first_bounce},
+      {"absorbed_flux", r.flux_absorbed},
+      {"escaping_flux", r.flux_escaping},
+      {"relative_mismatch", r.balance_mismatch},
+      {"how",
+       unit + ": what the sky and far ground put on all surfaces = what they absorb + what leaves "
+       "them unreceived, the last from each side's own view of the others (reciprocity), independently of the rows "
+       "that carried the light; the mismatch is the mesh's and falls under refinement"}};
+  j["left_out"] = {
+      {"direct_sky_at_sensors", "sensors see the sky through the apertures only (SC); a sensor outside the model "
+                                "sees no sky directly"},
+      {"receivers_seeing_no_sky_directly", r.receivers_direct_empty},
+      {"receivers", r.receivers_direct},
+      {"surface_sides_solved", r.sides_solved},
+      {"surface_sides_left_out", r.sides_left_out},
+      {"surface_sides_left_out_why", "no light from them reaches a sensor, directly or by reflection (decided by "
+                                     "which side of each plane the sensors and surfaces lie on; exact: the values "
+                                     "solved are those of the whole system)"},
+      {"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"}};
+  j["run_time_s"] = run_time_s;
+  return j;
+}
+
+}  // namespace daylit::cli

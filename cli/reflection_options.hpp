@@ -1,0 +1,45 @@
+#pragma once
+// The reflected components' command-line options, shared by `daylit df` and `daylit
+// illuminance`: --components, --ground-reflectance, --reflection-tolerance, --element-size and
+// --max-refinements; what they become for simulation/reflected_components.hpp; the summary's
+// `components` section; the notice for options given where they do not apply.
+
+#include <CLI/CLI.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "materials/surface_reflectance.hpp"
+#include "simulation/reflected_components.hpp"
+
+namespace daylit::cli {
+
+struct ReflectionCliOptions {
+  std::string components = "sc";
+  double ground_reflectance = 0.2;
+  double tolerance = 0.05;  // percentage points of E_out (DF points), every sensor's ERC + IRC
+  double element_size = 0;  // model units; 0: automatic (reflected_components.hpp)
+  int max_refinements = 0;
+  std::vector<const CLI::Option*> options;  // the four beside --components, for the notice
+
+  bool all() const { return components == "all"; }
+};
+
+// Registers the options on `command`; `what` names the quantity ("DF" or "illuminance").
+void add_reflection_options(CLI::App& command, ReflectionCliOptions& options, const std::string& what);
+
+// The options as reflected_components() takes them (sky and light are the caller's).
+ReflectionOptions reflection_options(const ReflectionCliOptions& options);
+
+// With --components sc, a notice for each reflection option given (it would be ignored).
+void notice_unused_reflection_options(const ReflectionCliOptions& options, bool quiet);
+
+// The summary's `components` section for a run with reflections; `unit` says what the energy
+// balance's fluxes are per ("per unit zenith luminance", "lux").
+nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std::string, SurfaceReflectance>& materials,
+                                  const ReflectionCliOptions& opt, double run_time_s, const std::string& unit);
+
+}  // namespace daylit::cli
