@@ -15,12 +15,15 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/model_options.hpp"
+#include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
 #include "report/model_reports.hpp"
@@ -51,6 +54,7 @@ struct IlluminanceOptions {
   std::string out, summary, image;
   int threads = 0;
   bool quiet = false;
+  ReflectionCliOptions reflections;
   // The Perez sky (--sky perez): the hour from --weather and --time, or given.
   std::string weather, perez_clamps = "none";
   double diffuse_irradiance = 0, direct_irradiance = 0, dew_point_c = 11;
@@ -75,17 +79,23 @@ struct GridLux {
   std::vector<double> total;
   GridStatistics statistics;
   double run_time_s;
+  std::vector<double> erc_lux, irc_lux, reflection_error_lux;  // with --components all
 };
 
 void write_lux_csv(std::FILE* out, const std::vector<GridLux>& grids) {
-  fmt::print(out, "grid,index,x,y,z,dx,dy,dz,sky_lux,sun_lux,illuminance_lux,sky_error_bound_lux\n");
+  const bool reflected = !grids.empty() && !grids.front().erc_lux.empty();
+  fmt::print(out, "grid,index,x,y,z,dx,dy,dz,sky_lux,sun_lux,{}illuminance_lux,sky_error_bound_lux{}\n",
+             reflected ? "erc_lux,irc_lux," : "", reflected ? ",reflection_error_estimate_lux" : "");
   for (const auto& g : grids) {
     for (std::size_t i = 0; i < g.grid->sensors.size(); ++i) {
       const Sensor& s = g.grid->sensors[i];
       // 17 significant digits: the values round-trip.
-      fmt::print(out, "{},{},{},{},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.3g}\n", g.grid->name, i, s.position.x,
-                 s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z, g.result.sky_lux[i],
-                 g.result.sun_lux[i], g.total[i], g.result.sky_error_lux[i]);
+      fmt::print(out, "{},{},{},{},{},{},{},{},{:.17g},{:.17g},", g.grid->name, i, s.position.x, s.position.y,
+                 s.position.z, s.normal.x, s.normal.y, s.normal.z, g.result.sky_lux[i], g.result.sun_lux[i]);
+      if (reflected) fmt::print(out, "{:.17g},{:.17g},", g.erc_lux[i], g.irc_lux[i]);
+      fmt::print(out, "{:.17g},{:.3g}", g.total[i], g.result.sky_error_lux[i]);
+      if (reflected) fmt::print(out, ",{:.3g}", g.reflection_error_lux[i]);
+      fmt::print(out, "\n");
     }
   }
 }
@@ -284,11 +294,59 @@ int run_illuminance(IlluminanceOptions opt) {
   for (const auto& grid : model.grids) {
     const auto tg = std::chrono::steady_clock::now();
     ProgressBar bar("illuminance " + grid.name, grid.sensors.size(), show_progress);
-    GridLux g{&grid, illuminance(engine, model.scene, grid, c, [&](std::size_t done) { bar.update(done); }), {}, {}, 0};
+    GridLux g{&grid, illuminance(engine, model.scene, grid, c, [&](std::size_t done) { bar.update(done); }), {}, {}, 0, {}, {}, {}};
     for (std::size_t i = 0; i < grid.sensors.size(); ++i) g.total.push_back(g.result.sky_lux[i] + g.result.sun_lux[i]);
     g.statistics = grid_statistics(g.total, kIlluminanceThresholds);
     g.run_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tg).count();
     grids.push_back(std::move(g));
+  }
+
+  // ---- Reflected components (--components all): one radiosity solution lit by this sky and sun.
+  notice_unused_reflection_options(opt.reflections, opt.quiet);
+  std::optional<ReflectionResult> reflections;
+  std::map<std::string, SurfaceReflectance> used_materials;
+  double reflections_time_s = 0;
+  const double horizontal_lux = unobstructed_daylight_lux(c);
+  if (opt.reflections.all()) {
+    const auto tr = std::chrono::steady_clock::now();
+    SceneReflectances rho = scene_reflectances(model.scene);
+    used_materials = std::move(rho.materials);
+    std::vector<const SensorGrid*> grid_ptrs;
+    std::size_t total = 0;
+    for (const auto& g : model.grids) grid_ptrs.push_back(&g), total += g.sensors.size();
+    if (horizontal_lux > 0) {
+      ReflectionOptions ro = reflection_options(opt.reflections);
+      ro.mode = mode;
+      ro.light = [&c](const SphericalRegion& above, const Vec3& n, const Aperture* aperture) {
+        return daylight_irradiance(c, aperture, above, n);
+      };
+      ro.light_horizontal = horizontal_lux;
+      ProgressBar bar("reflections", total, show_progress);
+      reflections = reflected_components(model.scene, rho.reflectance, engine, grid_ptrs, ro,
+                                         [&](std::size_t done) { bar.update(done); });
+    } else {
+      // No light outside at all (the sun down, no sky): nothing to reflect, exactly.
+      ReflectionResult none;
+      none.black = true;
+      for (const auto& g : model.grids)
+        none.grids.push_back({std::vector<double>(g.sensors.size(), 0.0), std::vector<double>(g.sensors.size(), 0.0),
+                              std::vector<double>(g.sensors.size(), 0.0)});
+      reflections = std::move(none);
+    }
+    reflections_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
+    // Percent of the unobstructed horizontal illuminance, as DF is, back to lux.
+    const double to_lux = horizontal_lux / 100;
+    for (std::size_t k = 0; k < grids.size(); ++k) {
+      GridLux& g = grids[k];
+      const SensorReflections& r = reflections->grids[k];
+      for (std::size_t i = 0; i < g.total.size(); ++i) {
+        g.erc_lux.push_back(to_lux * r.erc_percent[i]);
+        g.irc_lux.push_back(to_lux * r.irc_percent[i]);
+        g.reflection_error_lux.push_back(to_lux * r.error_percent[i]);
+        g.total[i] += g.erc_lux[i] + g.irc_lux[i];
+      }
+      g.statistics = grid_statistics(g.total, kIlluminanceThresholds);
+    }
   }
 
   StagedOutputs outputs;
@@ -362,11 +420,24 @@ int run_illuminance(IlluminanceOptions opt) {
     sun_json["glazing_transmittance_change_across_disk_max"] = glazing_slope * std::sin(c.sun_half_angle);
   summary["sun"] = sun_json;
 
-  summary["components"] = {
-      {"computed", c.has_sun() ? nlohmann::json{"sky_direct", "sun_direct"} : nlohmann::json{"sky_direct"}},
-      {"left_out",
-       {{"externally_reflected", "not computed (obstructions and the ground are black)"},
-        {"internally_reflected", "not computed (room surfaces are black)"}}}};
+  if (reflections) {
+    summary["components"] = reflection_summary(*reflections, used_materials, opt.reflections, reflections_time_s, "lux");
+    summary["components"]["computed"] = c.has_sun() ? nlohmann::json{"sky_direct", "sun_direct", "erc", "irc"}
+                                                    : nlohmann::json{"sky_direct", "erc", "irc"};
+    summary["components"]["illuminance_lux_is"] = "sky_lux + sun_lux + erc_lux + irc_lux";
+    summary["components"]["lit_by"] = {
+        {"first_bounce", c.has_sun() ? "the sky and the sun, through the apertures and seen directly"
+                                     : "the sky, through the apertures and seen directly"},
+        {"unobstructed_horizontal_lux", horizontal_lux},
+        {"far_ground_luminance_is", "ground_reflectance x unobstructed_horizontal_lux / pi (sky and sun)"}};
+    if (horizontal_lux == 0) summary["components"]["radiosity"] = "none: no light outside (sun down, no sky), ERC = IRC = 0";
+  } else {
+    summary["components"] = {
+        {"computed", c.has_sun() ? nlohmann::json{"sky_direct", "sun_direct"} : nlohmann::json{"sky_direct"}},
+        {"left_out",
+         {{"externally_reflected", "not computed (--components sc)"},
+          {"internally_reflected", "not computed (--components sc)"}}}};
+  }
   if (site) {
     summary["site"] = site_json(*site, opt.files.site);
     if (perez) summary["site"]["source"] = perez_hour_setup->site_source;
@@ -519,6 +590,7 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  add_reflection_options(*cmd, opt->reflections, "illuminance");
   cmd->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_illuminance(*opt); };
 }

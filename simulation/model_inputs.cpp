@@ -45,7 +45,7 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   for (const auto& grid : in.grids)
     if (faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "
-                                 "(each aperture lies behind each sensor's plane): its daylight factors are 0. A grid on a "
+                                 "(each aperture lies behind each sensor's plane): its sky components are 0 (only reflected light can reach it). A grid on a "
                                  "facade facing out, or reversed directions?");
   if (!files.site.empty()) {
     in.site = read_site_file(files.site);

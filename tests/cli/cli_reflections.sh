@@ -3,7 +3,8 @@
 # has sc, erc, irc, df and the error estimate, df = sc + erc + irc row by row, the sky component
 # is that of --components sc to the last digit, the summary reports the mesh, the solver, the
 # error estimate, the energy balance and the materials; bad reflectances and mirrors fail cleanly
-# with no output.
+# with no output. `daylit illuminance --components all` gives df's solution in lux, and the sun's
+# first bounce matches a closed form.
 set -u
 daylit=$(realpath "$1")
 samples=$(realpath "$2")
@@ -70,6 +71,74 @@ expect_failure "gradient with reflections" "components sc" "${room[@]}" --compon
 "$daylit" df --scene "$work/mirror.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts" \
   --components sc --out "$work/mirror-sc.csv" --quiet || fail "mirror with --components sc"
 cmp -s "$work/mirror-sc.csv" "$work/sc.csv" || fail "mirror changes the sky component"
+
+# `daylit illuminance --components all`: under the overcast sky at 10,000 lux diffuse horizontal,
+# ERC and IRC in lux are df's percentages times 100 (the same solution, scaled), and the total is
+# sky + sun + ERC + IRC.
+"$daylit" illuminance "${room[@]}" "${fast[@]}" --sky cie-overcast --diffuse-horizontal 10000 --out "$work/lux.csv" \
+  --summary "$work/lux.json" --quiet || fail "illuminance --components all on the room"
+python3 - "$work/lux.csv" "$work/all.csv" "$work/lux.json" <<'PY' || fail "illuminance reflections against df"
+import csv, json, sys
+lux = list(csv.DictReader(open(sys.argv[1])))
+df = list(csv.DictReader(open(sys.argv[2])))
+assert len(lux) == len(df) == 80
+for l, d in zip(lux, df):
+    for a, b in (("erc_lux", "erc_percent"), ("irc_lux", "irc_percent")):
+        assert abs(float(l[a]) - 100 * float(d[b])) <= 1e-12 * max(100 * float(d[b]), 1e-300) + 1e-9, (a, l[a], d[b])
+    # The estimate is written to 3 significant digits.
+    e, p = float(l["reflection_error_estimate_lux"]), 100 * float(d["reflection_error_estimate_percent"])
+    assert abs(e - p) <= 5e-3 * p, (e, p)
+    total = sum(float(l[k]) for k in ("sky_lux", "sun_lux", "erc_lux", "irc_lux"))
+    assert abs(float(l["illuminance_lux"]) - total) <= 1e-12 * total, l
+c = json.load(open(sys.argv[3]))["components"]
+assert c["computed"] == ["sky_direct", "erc", "irc"], c["computed"]
+assert c["illuminance_lux_is"] == "sky_lux + sun_lux + erc_lux + irc_lux"
+PY
+
+# The sun's first bounce, against a closed form: a 2 x 2 m plate (rho = 0.5) lit by the sun alone
+# (zenith 30°, 100,000 lux direct normal, no sky), seen from above by sensors facing down. The
+# plate's top is lit uniformly, M = rho E_dn cos 30°, and reflects once onto the sensors:
+# E = M F, F Howell's factor from the point to the plate (four rectangles about its foot). A
+# far skylight at 30 m stands in for the apertures daylit asks for; it lies behind every sensor.
+cat > "$work/plate.rad" <<'RAD'
+void plastic grey
+0
+0
+5 0.5 0.5 0.5 0 0
+grey polygon plate
+0
+0
+12 -1 -1 0  1 -1 0  1 1 0  -1 1 0
+RAD
+cat > "$work/skylight.rad" <<'RAD'
+void glass clear
+0
+0
+3 1 1 1
+clear polygon far_skylight
+0
+0
+12 30 0 5  30.1 0 5  30.1 0.1 5  30 0.1 5
+RAD
+printf '0 0 1 0 0 -1\n0.5 0.3 0.4 0 0 -1\n' > "$work/plate.pts"
+"$daylit" illuminance --components all --scene "$work/plate.rad" --apertures "$work/skylight.rad" --grid "$work/plate.pts" \
+  --sky uniform --diffuse-horizontal 0 --sun-zenith 30 --sun-azimuth 0 --direct-normal 100000 --out "$work/plate.csv" \
+  --quiet || fail "illuminance with the sun on the plate"
+python3 - "$work/plate.csv" <<'PY' || fail "sun-lit plate against Howell's factor"
+import csv, math, sys
+def howell(a, b, c):  # point under the corner of an a x b rectangle at distance c (parallel)
+    x, y = a / c, b / c
+    return (x / math.sqrt(1 + x * x) * math.atan(y / math.sqrt(1 + x * x)) +
+            y / math.sqrt(1 + y * y) * math.atan(x / math.sqrt(1 + y * y))) / (2 * math.pi)
+m = 0.5 * 1e5 * math.cos(math.radians(30))
+for r in csv.DictReader(open(sys.argv[1])):
+    x, y, h = float(r["x"]), float(r["y"]), float(r["z"])
+    f = howell(1 - x, 1 - y, h) + howell(1 + x, 1 - y, h) + howell(1 - x, 1 + y, h) + howell(1 + x, 1 + y, h)
+    # A uniform exitance is what linear elements carry exactly and the transport is exact: the
+    # only error is roundoff (1e-12 allows for the sums over the mesh's elements).
+    assert abs(float(r["irc_lux"]) - m * f) <= 1e-12 * m * f, (r["irc_lux"], m * f)
+    assert float(r["sky_lux"]) == 0 and float(r["sun_lux"]) == 0 and float(r["erc_lux"]) == 0, r
+PY
 
 [ "$failures" -eq 0 ] && echo "room: columns, sums, summary and bad input as expected"
 exit "$failures"
