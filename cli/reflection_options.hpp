@@ -18,7 +18,8 @@
 namespace daylit::cli {
 
 struct ReflectionCliOptions {
-  std::string components = "sc";
+  std::string components = "all";
+  const CLI::Option* components_option = nullptr;
   double ground_reflectance = 0.2;
   double tolerance = 0.05;  // percentage points of E_out (DF points), every sensor's ERC + IRC
   double element_size = 0;  // model units; 0: automatic (reflected_components.hpp)
@@ -26,6 +27,7 @@ struct ReflectionCliOptions {
   std::vector<const CLI::Option*> options;  // the four beside --components, for the notice
 
   bool all() const { return components == "all"; }
+  bool components_given() const { return components_option && components_option->count() > 0; }
 };
 
 // Registers the options on `command`; `what` names the quantity ("DF" or "illuminance").

@@ -29,7 +29,7 @@ expect_failure() {  # name, expected text in stderr, arguments...
   local name=$1 expected=$2
   shift 2
   rm -f out.csv summary.json plan.png
-  timeout 120 "$daylit" df "$@" --summary summary.json --image plan.png --quiet 2> stderr.txt
+  timeout 120 "$daylit" df --components sc "$@" --summary summary.json --image plan.png --quiet 2> stderr.txt
   local status=$?
   clean_failure_status "$name" "$status"
   if LC_ALL=C grep -q '[^[:print:][:space:]]' stderr.txt; then echo "FAIL $name: unprintable bytes in stderr"; failures=$((failures + 1)); fi
@@ -51,7 +51,7 @@ expect_failure "missing file" "missing.rad" --apertures missing.rad --grid grid.
 expect_failure "empty grid" "empty.pts" --apertures window.rad --grid empty.pts --out out.csv
 expect_failure "no apertures" "no apertures" --scene window.rad --grid grid.pts --out out.csv
 # No sensors at all (neither --grid nor --model) is a command line that cannot be run: exit 2.
-"$daylit" df --apertures window.rad --out out.csv --quiet 2> stderr.txt
+"$daylit" df --components sc --apertures window.rad --out out.csv --quiet 2> stderr.txt
 status=$?
 [ "$status" -eq 2 ] || { echo "FAIL no --grid or --model: exit status $status, not 2"; failures=$((failures + 1)); }
 grep -q -- "--grid or --model" stderr.txt || { echo "FAIL no --grid or --model: stderr"; cat stderr.txt; failures=$((failures + 1)); }
@@ -90,7 +90,7 @@ printf 'void plastic black 0 0 5 0 0 0 0 0\nblack polygon star 0 0 15 0 0 0 2 0 
 expect_failure "self-intersecting occluder" "star.rad:2:" --scene star.rad --apertures window.rad --grid grid.pts --out out.csv
 
 # And a good run writes all three.
-"$daylit" df --apertures window.rad --grid grid.pts --out out.csv --summary summary.json --image plan.png --quiet
+"$daylit" df --components sc --apertures window.rad --grid grid.pts --out out.csv --summary summary.json --image plan.png --quiet
 if [ $? -ne 0 ] || [ ! -s out.csv ] || [ ! -s summary.json ] || [ ! -s plan.png ]; then
   echo "FAIL good run"; failures=$((failures + 1))
 fi
@@ -99,14 +99,14 @@ if grep -qi nan out.csv; then echo "FAIL good run printed NaN"; failures=$((fail
 # Repeated consecutive vertices are dropped with a notice, and change nothing; a sensor on an
 # occluder polygon (a table top, in its plane) sees what it would without it.
 printf 'void polygon window 0 0 21 0 0 1  2 0 1  2 0 1  2 0 2  0 0 2  0 0 2  0 0 1\n' > repeats.rad
-"$daylit" df --apertures repeats.rad --grid grid.pts --out repeats.csv 2> stderr.txt
+"$daylit" df --components sc --apertures repeats.rad --grid grid.pts --out repeats.csv 2> stderr.txt
 if ! grep -q "notice: repeats.rad:1: dropped repeated consecutive vertices" stderr.txt; then
   echo "FAIL repeated vertices: no notice"; cat stderr.txt; failures=$((failures + 1))
 fi
-"$daylit" df --apertures window.rad --grid grid.pts --out plain.csv --quiet
+"$daylit" df --components sc --apertures window.rad --grid grid.pts --out plain.csv --quiet
 if [ "$(cut -d, -f2- repeats.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL repeated vertices change the result"; failures=$((failures + 1)); fi
 printf 'void plastic black 0 0 5 0 0 0 0 0\nblack polygon table 0 0 12 0 0.5 0.85  2 0.5 0.85  2 3 0.85  0 3 0.85\n' > table.rad
-"$daylit" df --scene table.rad --apertures window.rad --grid grid.pts --out table.csv --quiet
+"$daylit" df --components sc --scene table.rad --apertures window.rad --grid grid.pts --out table.csv --quiet
 if [ "$(cut -d, -f2- table.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL sensor on a table top"; failures=$((failures + 1)); fi
 echo "ok   repeated vertices and sensors on occluders"
 
@@ -118,7 +118,7 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=16"
 lines=2000000
 awk -v n=$lines 'BEGIN { for (i = 0; i < n; ++i) printf "%d.%d %d.%d 0.85 0 0 -1\n", i % 1000, i % 7, int(i / 1000) % 1000, i % 11 }' > big.pts
 if [ -x /usr/bin/time ]; then
-  /usr/bin/time -f '%M' -o rss.txt timeout 300 "$daylit" df --apertures window.rad --grid big.pts --quiet > big.csv 2> stderr.txt
+  /usr/bin/time -f '%M' -o rss.txt timeout 300 "$daylit" df --components sc --apertures window.rad --grid big.pts --quiet > big.csv 2> stderr.txt
   status=$?
   rss_kb=$(tail -n 1 rss.txt)
   bound_kb=$(( (200 * lines) / 1024 + 150 * 1024 ))

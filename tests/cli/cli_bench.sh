@@ -102,7 +102,7 @@ for f in scenes_floor.csv scenes_floor_scene.rad scenes_floor_apertures.rad scen
   [ -s "$out/$f" ] || fail "$f missing or empty"
 done
 [ "$(awk -F, 'NR > 1 && $14 > 0' "$out/scenes_floor.csv" | wc -l)" -ge 2 ] || fail "floor: no pair found hidden by walls"
-"$daylit" df --scene "$out/scenes_floor_scene.rad" --apertures "$out/scenes_floor_apertures.rad" --grid "$out/scenes_floor_grid.pts" \
+"$daylit" df --components sc --scene "$out/scenes_floor_scene.rad" --apertures "$out/scenes_floor_apertures.rad" --grid "$out/scenes_floor_grid.pts" \
   --quiet --out "$out/floor_df.csv" || fail "df on the written floor: exit status $?"
 # Front to back gives the same regions as another partition: the sums within the certified bound.
 [ "$(awk -F, 'NR > 1 && $3 == "front_to_back" && !($10 < 1e-12)' "$out/scenes_occluders_one_core.csv" | wc -l)" -eq 0 ] ||

@@ -14,7 +14,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 office=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$samples/office/grid.pts")
 # The sky illuminance is the sky component's: --components sc.
 "$daylit" df "${office[@]}" --components sc --out "$work/df.csv" --quiet || fail "df on the office"
-"$daylit" illuminance "${office[@]}" --diffuse-horizontal 10000 --out "$work/lux.csv" --summary "$work/lux.json" \
+"$daylit" illuminance --components sc "${office[@]}" --diffuse-horizontal 10000 --out "$work/lux.csv" --summary "$work/lux.json" \
   --image "$work/lux.png" --quiet || fail "illuminance on the office"
 [ -s "$work/lux.png" ] || fail "no image"
 head -1 "$work/lux.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sky_lux,sun_lux,illuminance_lux,sky_error_bound_lux' ||
@@ -27,7 +27,7 @@ paste -d, "$work/df.csv" "$work/lux.csv" | awk -F, 'NR > 1 {
 # The city block at 17:00 on the summer solstice under a clear sky (CIE type 12) with the sun.
 city=(--scene "$samples/city/scene.rad" --apertures "$samples/city/apertures.rad" --grid "$samples/city/grid.pts"
       --site "$samples/city/site.json" --context "$samples/city/buildings.geojson")
-"$daylit" illuminance "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
+"$daylit" illuminance --components sc "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
   --direct-normal 70000 --summary "$work/city.json" --out "$work/city.csv" --quiet || fail "illuminance on the city"
 sun=$("$daylit" sun --site "$samples/city/site.json" --time 2026-06-21T17:00:00+02:00)
 python3 - "$work/city.json" "$sun" <<'PY' || fail "city summary"
@@ -52,7 +52,7 @@ PY
 # 1e-11 of the direct normal 70,000 lux (cap_clip.hpp: ~1e-13 of the disk per cut, more where the
 # regions are cut into different pieces, whose seams across the disk cancel).
 for min_angle in 0.1 0; do
-  "$daylit" illuminance "${city[@]}" --sky cie-12 --time 2026-06-21T10:00:00+02:00 --diffuse-horizontal 15000 \
+  "$daylit" illuminance --components sc "${city[@]}" --sky cie-12 --time 2026-06-21T10:00:00+02:00 --diffuse-horizontal 15000 \
     --direct-normal 70000 --context-min-angle $min_angle --out "$work/city_$min_angle.csv" --quiet || fail "city at 10:00"
 done
 paste -d, "$work/city_0.1.csv" "$work/city_0.csv" | awk -F, 'NR > 1 {
@@ -60,9 +60,9 @@ paste -d, "$work/city_0.1.csv" "$work/city_0.csv" | awk -F, 'NR > 1 {
   fail "the sun changed when small buildings outside its beam were left out"
 
 # The quadrature path gives the same answer within the fit's per-sensor bounds.
-"$daylit" illuminance "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
+"$daylit" illuminance --components sc "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
   --sky-method quadrature --out "$work/cityq.csv" --quiet || fail "quadrature on the city"
-"$daylit" illuminance "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
+"$daylit" illuminance --components sc "${city[@]}" --sky cie-12 --time 2026-06-21T17:00:00+02:00 --diffuse-horizontal 15000 \
   --sky-method fit --out "$work/cityf.csv" --quiet || fail "fit on the city"
 paste -d, "$work/cityf.csv" "$work/cityq.csv" | awk -F, 'NR > 1 {
     d = $9 - $21; if (d < 0) d = -d; if (d > $12 + $24 + 1e-9) bad++ } END { exit bad > 0 }' ||
@@ -72,7 +72,7 @@ expect_failure() {  # name, text stderr must contain, arguments...
   local name=$1 expected=$2
   shift 2
   rm -f "$work/bad.csv"
-  if "$daylit" illuminance "$@" --out "$work/bad.csv" 2> "$work/err"; then
+  if "$daylit" illuminance --components sc "$@" --out "$work/bad.csv" 2> "$work/err"; then
     fail "$name: exit status 0"
   fi
   grep -q -- "$expected" "$work/err" || fail "$name: stderr lacks '$expected': $(cat "$work/err")"

@@ -8,7 +8,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
 failures=0
 
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --out grids.csv --summary summary.json 2> stderr.txt
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --out grids.csv --summary summary.json 2> stderr.txt
 status=$?
 rows=$(($(wc -l < grids.csv) - 1))
 if [ "$status" -ne 0 ] || [ "$rows" -ne 400 ]; then echo "FAIL df --model: status $status, $rows rows"; cat stderr.txt; failures=$((failures + 1)); fi
@@ -20,30 +20,30 @@ echo "ok   df --model: $rows sensors in the model's grids"
 
 # --grid replaces the model's grids, said so.
 printf '2 2 0.8 0 0 1\n' > one.pts
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --grid one.pts --out one.csv 2> stderr.txt
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --grid one.pts --out one.csv 2> stderr.txt
 if [ $? -ne 0 ] || [ "$(wc -l < one.csv)" -ne 2 ] || ! grep -q "sensor grids are left out: --grid was given" stderr.txt; then
   echo "FAIL df --model --grid"; failures=$((failures + 1))
 fi
 # A grid whose sensors all face away from every aperture (up, above the roof) is said so.
 printf '2 2 100 0 0 1\n3 2 100 0 0 1\n' > down.pts
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --grid down.pts --out down.csv 2> stderr.txt
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --grid down.pts --out down.csv 2> stderr.txt
 if ! grep -q "every sensor of grid 'down' faces away from every aperture" stderr.txt; then echo "FAIL no notice for a grid facing away"; failures=$((failures + 1)); fi
-"$daylit" illuminance --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
+"$daylit" illuminance --components sc --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < lux.csv)" -ne 401 ]; then echo "FAIL illuminance --model"; failures=$((failures + 1)); fi
 
 # Honeybee's results layout beside the CSV: one DF per line per grid, and grids_info.json.
 mkdir -p res
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --results res --out - --quiet > stdout.csv
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --results res --out - --quiet > stdout.csv
 if [ $? -ne 0 ] || [ -e ./- ] || [ "$(wc -l < stdout.csv)" -ne 401 ]; then echo "FAIL --out - to standard output"; failures=$((failures + 1)); fi
 if [ "$(wc -l < res/Tiny_Garage.res)" -ne 200 ] || [ "$(grep Tiny_Garage stdout.csv | cut -d, -f10)" != "$(cat res/Tiny_Garage.res)" ]; then
   echo "FAIL --results: Tiny_Garage.res is not the CSV's df_percent"; failures=$((failures + 1))
 fi
 if [ "$(python3 -c 'import json; print([(g["identifier"], g["count"]) for g in json.load(open("res/grids_info.json"))])')" != \
      "[('Tiny_House_Zone', 200), ('Tiny_Garage', 200)]" ]; then echo "FAIL --results: grids_info.json"; failures=$((failures + 1)); fi
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --out ./- --quiet
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --out ./- --quiet
 if [ "$(wc -l < ./-)" -ne 401 ]; then echo "FAIL --out ./- writes a file named -"; failures=$((failures + 1)); fi
 echo "ok   --results, --out - and --out ./-"
-"$daylit" df --model "$data/model_radiance_grid_views.hbjson" --median-diffuse-lux 10000 --summary en.json --out /dev/null --quiet
+"$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --median-diffuse-lux 10000 --summary en.json --out /dev/null --quiet
 if [ "$(python3 -c 'import json; g = json.load(open("en.json"))["grids"][0]["en17037_df_method"]; print(g["levels"][0]["target_df_percent"], g["levels"][0]["minimum_target_df_percent"], g["level_met"] in ("none", "minimum", "medium", "high"))')" != "3.0 1.0 True" ]; then
   echo "FAIL --median-diffuse-lux: no EN 17037 block"; failures=$((failures + 1))
 fi
@@ -52,7 +52,7 @@ expect_failure() {  # description, pattern, arguments...
   local what="$1" pattern="$2"
   shift 2
   rm -f out.csv
-  "$daylit" df "$@" > stdout.txt 2> stderr.txt
+  "$daylit" df --components sc "$@" > stdout.txt 2> stderr.txt
   local status=$?
   if [ "$status" -ne 1 ] || ! grep -q -- "$pattern" stderr.txt || [ -e out.csv ]; then
     echo "FAIL $what: status $status"; cat stderr.txt; failures=$((failures + 1))
@@ -77,7 +77,7 @@ expect_failure "a folder that is not a Radiance folder" "not a Honeybee Radiance
 mkdir -p grids
 "$daylit" grid --model "$data/model_5vertex_sub_faces.hbjson" --out grids --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < grids/TinyHouseZone.pts)" -lt 10 ]; then echo "FAIL grid --model"; failures=$((failures + 1)); fi
-"$daylit" df --model "$data/model_5vertex_sub_faces.hbjson" --grid grids/TinyHouseZone.pts --out grid_df.csv --quiet
+"$daylit" df --components sc --model "$data/model_5vertex_sub_faces.hbjson" --grid grids/TinyHouseZone.pts --out grid_df.csv --quiet
 if [ $? -ne 0 ]; then echo "FAIL df on the generated grid"; failures=$((failures + 1)); fi
 printf 'void plastic f 0 0 5 .2 .2 .2 0 0\nf polygon floor 0 0 12 0 0 0 4 0 0 4 3 0 0 3 0\n' > floor.rad
 "$daylit" grid --scene floor.rad --spacing 1 --out grids --quiet

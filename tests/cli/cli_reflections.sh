@@ -72,6 +72,13 @@ expect_failure "gradient with reflections" "components sc" "${room[@]}" --compon
   --components sc --out "$work/mirror-sc.csv" --quiet || fail "mirror with --components sc"
 cmp -s "$work/mirror-sc.csv" "$work/sc.csv" || fail "mirror changes the sky component"
 
+# The whole DF is the default; --gradient (of the sky component) without --components falls back
+# to SC alone and says so.
+"$daylit" df "${room[@]}" --element-size 3 --out "$work/default.csv" --quiet || fail "df on the room by default"
+head -1 "$work/default.csv" | grep -q ',erc_percent,irc_percent,df_percent,' || fail "the default is not the whole DF"
+"$daylit" df "${room[@]}" --gradient --out "$work/gradient.csv" 2> "$work/gradient.txt" || fail "df --gradient"
+grep -q "computing SC only" "$work/gradient.txt" || fail "no notice that --gradient computes SC only"
+
 # `daylit illuminance --components all`: under the overcast sky at 10,000 lux diffuse horizontal,
 # ERC and IRC in lux are df's percentages times 100 (the same solution, scaled), and the total is
 # sky + sun + ERC + IRC.

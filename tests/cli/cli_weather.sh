@@ -16,7 +16,7 @@ head -40 "$samples/office/grid.pts" > "$work/grid.pts"
 office=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$work/grid.pts" --quiet)
 epw="$data/chicago-ohare-tmy3-jan1-3.epw"
 
-"$daylit" illuminance "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:00-06:00 \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:00-06:00 \
   --summary "$work/epw.json" --out "$work/epw.csv" || fail "perez with an EPW hour"
 python3 - "$work/epw.json" <<'PY' || fail "EPW summary"
 import json, sys
@@ -36,16 +36,16 @@ PY
 head -1 "$work/epw.csv" | grep -q '^grid,index' || fail "CSV"
 
 # The same hour asked in UTC picks the same record; 12:00:01 local picks the next one.
-"$daylit" illuminance "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T18:00:00Z --summary "$work/utc.json" \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T18:00:00Z --summary "$work/utc.json" \
   --out "$work/utc.csv" || fail "perez at a UTC time"
 cmp -s "$work/epw.csv" "$work/utc.csv" || fail "the same instant in UTC gave another result"
-"$daylit" illuminance "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:01-06:00 --summary "$work/next.json" \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:01-06:00 --summary "$work/next.json" \
   --out /dev/null || fail "perez a second later"
 python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['weather']['record']['line'] == 21" "$work/next.json" ||
   fail "12:00:01 is in the hour ending 13:00"
 
 # A .wea of the same hours (irradiance only: the illuminances come from Perez's efficacies).
-"$daylit" illuminance "${office[@]}" --sky perez --weather "$data/chicago-ohare-tmy3-jan1-3.wea" \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$data/chicago-ohare-tmy3-jan1-3.wea" \
   --time 2026-01-01T12:00:00-06:00 --perez-clamps radiance --summary "$work/wea.json" --out /dev/null || fail "perez with a .wea"
 python3 - "$work/wea.json" <<'PY' || fail ".wea summary"
 import json, sys
@@ -57,12 +57,12 @@ assert s["weather"]["sun_taken_at"].startswith("2026-01-01T11:30:00")
 PY
 
 # Given irradiances and sun; --site overrides the file's site and says so.
-"$daylit" illuminance "${office[@]}" --sky perez --diffuse-horizontal-irradiance 144 --direct-normal-irradiance 521 \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --diffuse-horizontal-irradiance 144 --direct-normal-irradiance 521 \
   --sun-zenith 65.1666 --sun-azimuth 173.57 --summary "$work/given.json" --out /dev/null || fail "perez given"
 python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['sky']['perez']; assert p['direct_normal_lux_source'].startswith('Perez')" \
   "$work/given.json" || fail "given irradiances: efficacy"
 echo '{"latitude_deg": 41.5, "longitude_deg": -87.5, "elevation_m": 180, "north_deg": 10}' > "$work/site.json"
-"$daylit" illuminance "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:00-06:00 \
+"$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T12:00:00-06:00 \
   --site "$work/site.json" --summary "$work/sited.json" --out /dev/null || fail "perez with --site"
 python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['site']; assert s['source'] == '--site' and s['latitude_deg'] == 41.5" \
   "$work/sited.json" ||
@@ -72,7 +72,7 @@ expect_failure() {  # name, text stderr must contain, arguments...
   local name=$1 expected=$2
   shift 2
   rm -f "$work/bad.csv" "$work/bad.json"
-  "$daylit" illuminance "${office[@]}" "$@" --out "$work/bad.csv" --summary "$work/bad.json" 2> "$work/err"
+  "$daylit" illuminance --components sc "${office[@]}" "$@" --out "$work/bad.csv" --summary "$work/bad.json" 2> "$work/err"
   local rc=$?
   [ $rc -eq 1 ] || fail "$name: exit status $rc, not 1"
   grep -q -- "$expected" "$work/err" || fail "$name: stderr lacks '$expected': $(cat "$work/err")"
