@@ -1,7 +1,7 @@
 // `daylit bench reflections`: error against run time of the reflected components (ERC + IRC,
 // DESIGN.md §4, §8). Today it measures the Monte Carlo path tracer (bench/path_tracer.hpp) at
 // N = 16 … 4096 paths per sensor and B = 1 … 16 bounces, and the radiosity
-// (simulation/reflected_components.hpp) at element sizes 4, 2, 1 and 1/2 times its automatic one.
+// (simulation/reflected_components.hpp) at element sizes 4, 2 and 1 times its automatic one.
 //
 // Cases (bench/reflection_cases.hpp): two with closed forms (a plate over upward sensors; a box
 // with an open ceiling, Howell's factors), whose reference is exact; and two rooms without one, the
@@ -220,9 +220,9 @@ int run_bench_reflections(const BenchOptions& opt) {
         status.show(fmt::format("bench reflections: {}: N = {}, B = {}", c.name, n, b));
         rows.push_back(measure(c, references.back(), n, b));
       }
-    // The radiosity's rows: 4, 2, 1 and 1/2 times its automatic element size (--quick: 8 and 4),
+    // The radiosity's rows: 4, 2 and 1 times its automatic element size (--quick: 8 and 4),
     // against the same reference, timed the same way.
-    for (const double factor : opt.quick ? std::vector<double>{8, 4} : std::vector<double>{4, 2, 1, 0.5}) {
+    for (const double factor : opt.quick ? std::vector<double>{8, 4} : std::vector<double>{4, 2, 1}) {
       status.show(fmt::format("bench reflections: {}: radiosity, {} x the automatic element size", c.name, factor));
       rows.push_back(measure_radiosity(c, references.back(), factor));
     }
