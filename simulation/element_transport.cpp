@@ -64,9 +64,13 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& par
   std::array<double, 3> c{0, 0, 0};
   if (part.empty()) return c;
   const double side = dot(element.normal, element.vertices[0] - x);
-  if (side == 0) return c;
   const Vec3 w = side > 0 ? element.normal : -1.0 * element.normal;
   const double h = std::abs(side);
+  // A receiver within 1e-12 of the element's size from its plane (a node of a coplanar surface,
+  // off the plane by roundoff) sees it at grazing incidence: the coefficients are O(h/size) of
+  // the element's exitance, below 1e-12, and the region's directions may touch w·u = 0, where
+  // the rational moments diverge. Left out, as 0.
+  if (h <= 1e-12 * std::sqrt(element.area)) return c;
   Vec3 e1, e2;
   orthonormal_basis(w, e1, e2);
   const double l0 = lambert(part, n);

@@ -224,7 +224,8 @@ class Transport {
       if (s == own_surface) continue;
       const RadiositySurface& surf = mesh.surfaces[s];
       const double facing = dot(surf.normal, x - surf.point);
-      if (facing == 0) continue;
+      // In the surface's plane, up to roundoff (coplanar surfaces): nothing passes between them.
+      if (std::abs(facing) <= kSideMargin * scale_) continue;
       const int side = facing > 0 ? 0 : 1;
       if (!live_[s][std::size_t(side)]) continue;  // never so for a receiver that is live itself
       const Polygon& poly = scene_.occluders[surf.occluder];
