@@ -490,7 +490,7 @@ Floor office_floor(const Scene& office, int rooms_per_row, const std::vector<int
       std::vector<Sensor> sensors;
       if (std::find(sensor_rooms.begin(), sensor_rooms.end(), row * rooms_per_row + i) != sensor_rooms.end())
         for (int sy = 0; sy < 3; ++sy)
-          for (int sx = 0; sx < 2; ++sx) sensors.push_back({{x0 + 1 + 2 * sx, 1 + 2 * sy, 0.85}, {0, 0, 1}});
+          for (int sx = 0; sx < 2; ++sx) sensors.push_back({{x0 + 1 + 2 * sx, double(1 + 2 * sy), 0.85}, {0, 0, 1}});
       if (row == 1) {  // mirror: y → 14 − y
         const auto mirror = [](Vec3& v) { v.y = 14 - v.y; };
         for (Polygon& p : polygons) {

@@ -114,10 +114,8 @@ int run_df(DfOptions opt) {
     std::vector<const SensorGrid*> grid_ptrs;
     for (const auto& g : grids) grid_ptrs.push_back(&g);
     const auto tr = std::chrono::steady_clock::now();
-    std::size_t total = 0;
-    for (const auto& g : grids) total += g.sensors.size();
-    ProgressBar bar("reflections", total, show_progress);
-    reflections = reflected_components(scene, reflectance, engine, grid_ptrs, ro, [&](std::size_t done) { bar.update(done); });
+    ro.on_progress = reflection_progress_bars(show_progress);
+    reflections = reflected_components(scene, reflectance, engine, grid_ptrs, ro);
     reflections_time_s = seconds_since(tr);
     if (!opt.quiet && reflections->black)
       std::cerr << "notice: nothing reflects (every surface black and --ground-reflectance 0): ERC = IRC = 0, no "

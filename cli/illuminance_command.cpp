@@ -312,8 +312,7 @@ int run_illuminance(IlluminanceOptions opt) {
     SceneReflectances rho = scene_reflectances(model.scene);
     used_materials = std::move(rho.materials);
     std::vector<const SensorGrid*> grid_ptrs;
-    std::size_t total = 0;
-    for (const auto& g : model.grids) grid_ptrs.push_back(&g), total += g.sensors.size();
+    for (const auto& g : model.grids) grid_ptrs.push_back(&g);
     if (horizontal_lux > 0) {
       ReflectionOptions ro = reflection_options(opt.reflections);
       ro.mode = mode;
@@ -321,9 +320,8 @@ int run_illuminance(IlluminanceOptions opt) {
         return daylight_irradiance(c, aperture, above, n);
       };
       ro.light_horizontal = horizontal_lux;
-      ProgressBar bar("reflections", total, show_progress);
-      reflections = reflected_components(model.scene, rho.reflectance, engine, grid_ptrs, ro,
-                                         [&](std::size_t done) { bar.update(done); });
+      ro.on_progress = reflection_progress_bars(show_progress);
+      reflections = reflected_components(model.scene, rho.reflectance, engine, grid_ptrs, ro);
     } else {
       // No light outside at all (the sun down, no sky): nothing to reflect, exactly.
       ReflectionResult none;

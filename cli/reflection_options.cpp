@@ -1,6 +1,9 @@
 #include "cli/reflection_options.hpp"
 
 #include <iostream>
+#include <memory>
+
+#include "report/progress_bar.hpp"
 
 namespace daylit::cli {
 
@@ -42,6 +45,24 @@ ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
   r.element_size = o.element_size;
   r.max_refinements = o.max_refinements;
   return r;
+}
+
+std::function<void(const std::string&, std::size_t, std::size_t)> reflection_progress_bars(bool shown) {
+  if (!shown) return {};
+  struct Bars {
+    std::string stage;
+    std::unique_ptr<ProgressBar> bar;
+  };
+  auto bars = std::make_shared<Bars>();
+  return [bars](const std::string& stage, std::size_t done, std::size_t total) {
+    if (!bars->bar || bars->stage != stage) {
+      bars->bar.reset();  // the finished stage's bar closes its line first
+      bars->stage = stage;
+      bars->bar = std::make_unique<ProgressBar>(stage, total, true,
+                                                stage.rfind("radiosity", 0) == 0 ? "element sides" : "sensors");
+    }
+    bars->bar->update(done);
+  };
 }
 
 void notice_unused_reflection_options(const ReflectionCliOptions& o, bool quiet) {

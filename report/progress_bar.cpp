@@ -8,8 +8,13 @@ namespace daylit::cli {
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
 
-ProgressBar::ProgressBar(std::string label, std::size_t total, bool enabled)
-    : label_(std::move(label)), total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()), last_(start_) {}
+ProgressBar::ProgressBar(std::string label, std::size_t total, bool enabled, std::string unit)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      total_(total),
+      enabled_(enabled),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 ProgressBar::~ProgressBar() {
   if (drawn_) std::fputc('\n', stderr);
@@ -27,8 +32,8 @@ void ProgressBar::update(std::size_t done) {
   const double fraction = double(done) / double(total_);
   const int filled = int(fraction * width);
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(stderr, "\r%s [%-*s] %3d%% %zu/%zu sensors, %.1f s", label_.c_str(), width,
-               std::string(std::size_t(filled), '=').c_str(), int(100 * fraction), done, total_, elapsed);
+  std::fprintf(stderr, "\r%s [%-*s] %3d%% %zu/%zu %s, %.1f s", label_.c_str(), width,
+               std::string(std::size_t(filled), '=').c_str(), int(100 * fraction), done, total_, unit_.c_str(), elapsed);
   std::fflush(stderr);
   drawn_ = true;
 }

@@ -9,12 +9,13 @@ namespace daylit::cli {
 
 class ProgressBar {
  public:
-  ProgressBar(std::string label, std::size_t total, bool enabled);
+  // `unit`: what is counted ("sensors", "element sides").
+  ProgressBar(std::string label, std::size_t total, bool enabled, std::string unit = "sensors");
   ~ProgressBar();
   void update(std::size_t done);
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   std::size_t total_;
   bool enabled_;
   bool drawn_ = false;

@@ -461,12 +461,18 @@ struct Local {
   std::size_t direct_empty = 0, direct = 0;
 };
 
+// A stage's progress, from options.on_progress (nothing where it is unset).
+ProgressCallback stage_progress(const ReflectionOptions& options, const std::string& stage, std::size_t total) {
+  if (!options.on_progress) return {};
+  return [&options, stage, total](std::size_t done) { options.on_progress(stage, done, total); };
+}
+
 // Rows of K and first bounce at every node, in parallel over element sides.
-std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result) {
+std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result, const ProgressCallback& progress = {}) {
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t ne = mesh.elements.size();
   std::vector<ReceiverRow> rows(t.unknowns());
-  const auto locals = for_each_sensor<Local>(2 * ne, 8, {}, [&](std::size_t i, Local& local) {
+  const auto locals = for_each_sensor<Local>(2 * ne, 8, progress, [&](std::size_t i, Local& local) {
     const std::size_t e = i / 2;
     const int side = int(i % 2);
     const RadiosityElement& el = mesh.elements[e];
@@ -554,10 +560,10 @@ struct MeshSolution {
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0;
 };
 
-MeshSolution solve_mesh(const Transport& t, ReflectionResult& result) {
+MeshSolution solve_mesh(const Transport& t, ReflectionResult& result, const ProgressCallback& progress) {
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
-  std::vector<ReceiverRow> rows = node_rows(t, result);
+  std::vector<ReceiverRow> rows = node_rows(t, result, progress);
   std::vector<double> rho(nu), source(nu);
   std::vector<TransportRow> k_rows(nu);
   for (std::size_t u = 0; u < nu; ++u) {
@@ -608,10 +614,14 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
                            ReflectionResult& result, const ProgressCallback& progress) {
   SensorValues out;
   const std::size_t nc = coarse_mesh.elements.size();
+  std::size_t before = 0;  // sensors of the earlier grids: progress counts over all of them
   for (const SensorGrid* grid : grids) {
     const std::size_t n = grid->sensors.size();
     std::vector<double> erc(n, 0.0), irc(n, 0.0), estimate(n, 0.0);
-    const auto locals = for_each_sensor<SensorLocal>(n, 4, progress, [&](std::size_t i, SensorLocal& local) {
+    ProgressCallback grid_progress;
+    if (progress) grid_progress = [&progress, before](std::size_t done) { progress(before + done); };
+    before += n;
+    const auto locals = for_each_sensor<SensorLocal>(n, 4, grid_progress, [&](std::size_t i, SensorLocal& local) {
       const Sensor& s = grid->sensors[i];
       local.through.assign(nc, 0.0);
       local.inside.assign(nc, 0.0);
@@ -681,12 +691,26 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   const double to_percent = 100 / t.e_out();
   result.sides_solved = t.live_side_count();
   result.sides_left_out = 2 * t.surface_count() - result.sides_solved;
-  MeshSolution coarse = solve_mesh(t, result);
+  const auto stage = [&](const std::string& name, std::size_t total) { return stage_progress(opt, name, total); };
+  MeshSolution coarse = solve_mesh(t, result, stage("radiosity: the coarse mesh's rows", 2 * t.mesh().elements.size()));
   for (int round = 0;; ++round) {
     const RadiosityMesh coarse_mesh = t.mesh();
     t.split_all();
-    MeshSolution fine = solve_mesh(t, result);
-    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result, progress);
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a chain of + here.
+    std::string name = "radiosity: ";
+    if (round == 0) {
+      name += "the mesh's";
+    } else {
+      name += "refinement ";
+      name += std::to_string(round);
+      name += "'s";
+    }
+    name += " rows";
+    MeshSolution fine = solve_mesh(t, result, stage(name, 2 * t.mesh().elements.size()));
+    std::size_t sensors = 0;
+    for (const SensorGrid* g : grids) sensors += g->sensors.size();
+    const ProgressCallback at_sensors = opt.on_progress ? stage("reflections at the sensors", sensors) : progress;
+    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result, at_sensors);
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
       SensorReflections& out = result.grids[g];
