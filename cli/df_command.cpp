@@ -52,17 +52,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int run_df(DfOptions opt) {
+int run_df(const DfOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (opt.reflections.all() && (opt.gradient || opt.refine)) {
-    if (opt.reflections.components_given())
-      throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
-    // The default (all) gives way to what was asked for explicitly, and says so.
-    opt.reflections.components = "sc";
-    if (!opt.quiet)
-      std::cerr << "notice: --gradient and --refine concern the sky component alone: computing SC only (DF = SC; "
-                   "--components sc says so explicitly)\n";
-  }
+  if (opt.reflections.all() && (opt.gradient || opt.refine))
+    throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational

@@ -8,13 +8,12 @@
 namespace daylit::cli {
 
 void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const std::string& what) {
-  o.components_option =
-      command
-          .add_option("--components", o.components,
-                      "all (default): direct light and the externally and internally reflected components (ERC, IRC) "
-                      "of the " + what + ", these by an exact-transport radiosity solution with an error estimate per "
-                      "sensor; sc: direct light alone (the sky component; the sun too for illuminance)")
-          ->check(CLI::IsMember({"sc", "all"}));
+  command
+      .add_option("--components", o.components,
+                  "sc (default): direct light alone (the sky component; the sun too for illuminance); all: also the "
+                  "externally and internally reflected components (ERC, IRC) of the " + what + ", by an "
+                  "exact-transport radiosity solution with an error estimate per sensor")
+      ->check(CLI::IsMember({"sc", "all"}));
   o.options.push_back(command.add_option("--ground-reflectance", o.ground_reflectance,
                                          "Reflectance of the far ground: directions below the horizon that meet no "
                                          "surface see rho_g E_h / pi (default 0.2, as gensky's ground glow); the model's "

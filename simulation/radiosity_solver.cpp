@@ -22,8 +22,13 @@ RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const s
     }
     s.last_change = size > 0 ? change / size : 0;
     if (change <= 1e-15 * size) break;
+    // Rows whose sums exceed 1 (a model whose surfaces overlap) can make the sweeps grow without
+    // bound: stop there rather than sweep on to infinity; the caller checks `converged`.
+    if (!std::isfinite(size) || size > 1e150) break;
   }
   s.sweeps = std::min(s.sweeps, max_sweeps);
+  s.converged = s.sweeps < max_sweeps && std::isfinite(s.last_change) && s.last_change <= 1e-15;
+  for (double m : s.exitance) s.converged = s.converged && std::isfinite(m);
   return s;
 }
 

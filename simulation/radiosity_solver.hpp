@@ -14,6 +14,7 @@ struct RadiositySolution {
   std::vector<double> exitance;
   int sweeps = 0;
   double last_change = 0;  // max |ΔM| of the last sweep, relative to max |M|
+  bool converged = false;  // to roundoff within max_sweeps, every value finite
 };
 
 // Gauss–Seidel sweeps of M_i ← S_i + ρ_i Σ_j K_ij M_j until a sweep changes no value by more than

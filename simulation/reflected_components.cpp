@@ -8,6 +8,7 @@
 #include <string>
 
 #include "illumination/moments.hpp"
+#include "illumination/orthonormal_basis.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/radiosity_solver.hpp"
 #include "simulation/sensor_loop.hpp"
@@ -346,9 +347,17 @@ class Transport {
       seen[1] = seen[1] || (point ? lo < margin : lo < -margin || in_plane);
     };
     std::vector<std::pair<std::size_t, int>> todo;
+    // Back to back: where another surface lies in the same plane facing the other way over this
+    // one's centroid (the two faces of one interior wall, as Honeybee writes adjacent rooms),
+    // this surface's back is the other's front. Solving both would count that light twice (the
+    // luminaire visibility does not let a polygon in the luminaire's own plane hide it), so the
+    // back side is left out, and the front of the other carries it.
+    std::vector<bool> back_covered(ns, false);
+    for (std::size_t s = 0; s < ns; ++s)
+      for (std::size_t t = 0; t < ns && !back_covered[s]; ++t) back_covered[s] = t != s && covers_back(t, s, margin);
     const auto mark = [&](std::size_t t, const std::array<bool, 2>& seen) {
       for (int side = 0; side < 2; ++side)
-        if (seen[std::size_t(side)] && !live_[t][std::size_t(side)]) {
+        if (seen[std::size_t(side)] && !live_[t][std::size_t(side)] && (side == 0 || !back_covered[t])) {
           live_[t][std::size_t(side)] = true;
           todo.emplace_back(t, side);
         }
@@ -372,6 +381,37 @@ class Transport {
         mark(t, seen);
       }
     }
+  }
+
+  // Whether surface t lies in surface s's plane, facing the other way, over s's area centroid.
+  bool covers_back(std::size_t t, std::size_t s, double margin) const {
+    const RadiositySurface &a = mesh_.surfaces[s], &b = mesh_.surfaces[t];
+    if (!(dot(a.normal, b.normal) < -1 + 1e-12)) return false;
+    const Polygon& pb = scene_.occluders[b.occluder];
+    for (const Vec3& v : pb.vertices)
+      if (std::abs(dot(a.normal, v - a.point)) > margin) return false;
+    // The centroid of s's elements (area-weighted), tested against t's polygon by crossings in
+    // its plane (seams of holes cancel).
+    Vec3 c{0, 0, 0};
+    double area = 0;
+    for (std::size_t e : a.elements) {
+      const RadiosityElement& el = mesh_.elements[e];
+      c = c + el.area * el.point(1.0 / 3, 1.0 / 3, 1.0 / 3);
+      area += el.area;
+    }
+    if (!(area > 0)) return false;
+    c = c / area;
+    Vec3 e1, e2;
+    orthonormal_basis(b.normal, e1, e2);
+    const double cx = dot(c, e1), cy = dot(c, e2);
+    bool inside = false;
+    const std::size_t m = pb.vertices.size();
+    for (std::size_t i = 0, j = m - 1; i < m; j = i++) {
+      const double xi = dot(pb.vertices[i], e1), yi = dot(pb.vertices[i], e2);
+      const double xj = dot(pb.vertices[j], e1), yj = dot(pb.vertices[j], e2);
+      if ((yi > cy) != (yj > cy) && cx < (xj - xi) * (cy - yi) / (yj - yi) + xi) inside = !inside;
+    }
+    return inside;
   }
 
   // The surfaces as luminaires (aperture s: surface s), seen past the opaque polygons, which keep
@@ -573,6 +613,9 @@ MeshSolution solve_mesh(const Transport& t, ReflectionResult& result, const Prog
     k_rows[u] = std::move(rows[u].row);
   }
   RadiositySolution sol = solve_radiosity(k_rows, rho, source);
+  if (!sol.converged)
+    throw Error("the radiosity solution did not converge (" + std::to_string(sol.sweeps) +
+                " sweeps): the model's surfaces may overlap (coincident polygons facing the same way count twice)");
   MeshSolution out;
   out.sweeps = sol.sweeps;
   out.solver_change = sol.last_change;

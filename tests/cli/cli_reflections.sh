@@ -72,12 +72,11 @@ expect_failure "gradient with reflections" "components sc" "${room[@]}" --compon
   --components sc --out "$work/mirror-sc.csv" --quiet || fail "mirror with --components sc"
 cmp -s "$work/mirror-sc.csv" "$work/sc.csv" || fail "mirror changes the sky component"
 
-# The whole DF is the default; --gradient (of the sky component) without --components falls back
-# to SC alone and says so.
-"$daylit" df "${room[@]}" --element-size 3 --out "$work/default.csv" --quiet || fail "df on the room by default"
-head -1 "$work/default.csv" | grep -q ',erc_percent,irc_percent,df_percent,' || fail "the default is not the whole DF"
-"$daylit" df "${room[@]}" --gradient --out "$work/gradient.csv" 2> "$work/gradient.txt" || fail "df --gradient"
-grep -q "computing SC only" "$work/gradient.txt" || fail "no notice that --gradient computes SC only"
+# The sky component alone by default (README: the radiosity is not yet fast on large models); a
+# reflection option given without --components all is named in a notice as unused.
+"$daylit" df "${room[@]}" --element-size 3 --out "$work/default.csv" 2> "$work/default.txt" || fail "df on the room by default"
+head -1 "$work/default.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent' || fail "the default is not SC alone"
+grep -q -- "--element-size is not used" "$work/default.txt" || fail "no notice that --element-size is not used"
 
 # `daylit illuminance --components all`: under the overcast sky at 10,000 lux diffuse horizontal,
 # ERC and IRC in lux are df's percentages times 100 (the same solution, scaled), and the total is
