@@ -383,3 +383,19 @@ TEST_CASE("window room: a further round splits every element and lowers the esti
   CHECK(met.refinements == 0);
   CHECK(met.error_by_round.size() == 1);
 }
+
+TEST_CASE("window room: an adjacent room's face behind a wall, back to back in its plane, changes nothing") {
+  // Honeybee writes an interior wall twice, once per room, as coincident polygons facing away from
+  // each other. Here the north wall gets such a twin facing out: its back lies on the wall's front
+  // and must not be counted as a second luminaire there (which made the rows sum above 1).
+  const WindowRoom room;
+  WindowRoom twin;
+  twin.scene.occluders.push_back(polygon({{0, 2, 0}, {0, 2, 2}, {2, 2, 2}, {2, 2, 0}}, "north_twin"));
+  twin.reflectance.push_back(0.5);
+  const ReflectionResult a = solve_room(room, 1.5), b = solve_room(twin, 1.5);
+  CHECK(b.sides_left_out >= a.sides_left_out + 1);
+  for (std::size_t i = 0; i < room.grid.sensors.size(); ++i) {
+    CHECK(b.grids[0].irc_percent[i] == Approx(a.grids[0].irc_percent[i]).epsilon(1e-12));
+    CHECK(b.grids[0].erc_percent[i] == Approx(a.grids[0].erc_percent[i]).epsilon(1e-12).margin(1e-15));
+  }
+}
