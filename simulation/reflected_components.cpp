@@ -66,6 +66,7 @@ struct Box {
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   bool empty() const { return !(lo.x <= hi.x); }
+  double longest_side() const { return empty() ? 0 : std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}); }
   bool meets(const Box& o, double margin) const {
     return lo.x - margin <= o.hi.x && o.lo.x - margin <= hi.x && lo.y - margin <= o.hi.y &&
            o.lo.y - margin <= hi.y && lo.z - margin <= o.hi.z && o.lo.z - margin <= hi.z;
@@ -114,7 +115,7 @@ class Transport {
       for (const Vec3& v : p.vertices) all.add(v);
     for (const Aperture& a : scene.apertures)
       for (const Vec3& v : a.polygon.vertices) all.add(v);
-    scale_ = all.empty() ? 1 : std::max({all.hi.x - all.lo.x, all.hi.y - all.lo.y, all.hi.z - all.lo.z, 1e-300});
+    scale_ = all.empty() ? 1 : std::max(all.longest_side(), 1e-300);
     mesh_ = mesh_surfaces(scene.occluders, reflectance, [&](const RadiosityElement& e) { return max_edge(e); });
     if (every_side)
       live_.assign(mesh_.surfaces.size(), {true, true});
@@ -134,7 +135,6 @@ class Transport {
   }
 
   const RadiosityMesh& mesh() const { return mesh_; }
-  RadiosityMesh& mesh() { return mesh_; }
   double e_out() const { return e_out_; }
   std::size_t unknowns() const { return 6 * mesh_.elements.size(); }
   std::size_t surface_count() const { return mesh_.surfaces.size(); }
@@ -272,10 +272,12 @@ class Transport {
           if (part.empty()) continue;
           auto c = element_irradiance_coefficients(part, el, x, n);
           // What is seen inside, by the same function as what is seen through, so that where the
-          // two regions are the same (nothing of the group in the way) the difference is 0 exactly.
+          // two regions are the same (nothing of the group in the way) the difference is 0 exactly:
+          // inside_c[i] where it came from that function, again where the shared edges gave it.
           const std::array<double, 3> c_in =
-              inside.empty() ? std::array<double, 3>{0.0, 0.0, 0.0}
-                             : element_irradiance_coefficients(element_region(inside, inside_free, el, x, n), el, x, n);
+              !inside_free || inside.empty()
+                  ? inside_c[i]
+                  : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
           double t = group.transmittance, spread = 0;
           if (!group.angular.empty()) {
             // T(μ) taken at the centroid's direction; its spread over the vertices' directions
@@ -574,8 +576,7 @@ double automatic_element_size(const Scene& scene, const std::vector<const Sensor
   for (const SensorGrid* g : grids) {
     Box b;
     for (const Sensor& s : g->sensors) b.add(s.position);
-    const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
-    if (side > 0) extents.push_back(side);
+    if (b.longest_side() > 0) extents.push_back(b.longest_side());
   }
   if (extents.empty()) {
     Box b;
@@ -583,8 +584,7 @@ double automatic_element_size(const Scene& scene, const std::vector<const Sensor
       for (const Vec3& v : a.polygon.vertices) b.add(v);
     for (const SensorGrid* g : grids)
       for (const Sensor& s : g->sensors) b.add(s.position);
-    const double side = b.empty() ? 0 : std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
-    return side > 0 ? side / 5 : 1.0;
+    return b.longest_side() > 0 ? b.longest_side() / 5 : 1.0;
   }
   std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2), extents.end());
   return extents[extents.size() / 2] / 5;
@@ -703,7 +703,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 
 ReflectionResult reflected_components(const Scene& scene, const std::vector<double>& reflectance,
                                       const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
-                                      const ReflectionOptions& options, const ProgressCallback& progress) {
+                                      const ReflectionOptions& options) {
   const double rho_max = check_inputs(scene, reflectance, options);
   if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
     std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
@@ -752,8 +752,8 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     MeshSolution fine = solve_mesh(t, result, stage(name, 2 * t.mesh().elements.size()));
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
-    const ProgressCallback at_sensors = opt.on_progress ? stage("reflections at the sensors", sensors) : progress;
-    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result, at_sensors);
+    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result,
+                                              stage("reflections at the sensors", sensors));
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
       SensorReflections& out = result.grids[g];

@@ -123,6 +123,6 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
 // [0, 1), a ground reflectance outside [0, 1) or an element size that is not positive.
 ReflectionResult reflected_components(const Scene& scene, const std::vector<double>& reflectance,
                                       const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
-                                      const ReflectionOptions& options, const ProgressCallback& progress = {});
+                                      const ReflectionOptions& options);
 
 }  // namespace daylit
