@@ -46,19 +46,19 @@ ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
   return r;
 }
 
-std::function<void(const std::string&, std::size_t, std::size_t)> reflection_progress_bars(bool shown) {
+std::function<void(const std::string&, const std::string&, std::size_t, std::size_t)> reflection_progress_bars(
+    bool shown) {
   if (!shown) return {};
   struct Bars {
     std::string stage;
     std::unique_ptr<ProgressBar> bar;
   };
   auto bars = std::make_shared<Bars>();
-  return [bars](const std::string& stage, std::size_t done, std::size_t total) {
+  return [bars](const std::string& stage, const std::string& unit, std::size_t done, std::size_t total) {
     if (!bars->bar || bars->stage != stage) {
       bars->bar.reset();  // the finished stage's bar closes its line first
       bars->stage = stage;
-      bars->bar = std::make_unique<ProgressBar>(stage, total, true,
-                                                stage.rfind("radiosity", 0) == 0 ? "element sides" : "sensors");
+      bars->bar = std::make_unique<ProgressBar>(stage, total, true, unit);
     }
     bars->bar->update(done);
   };

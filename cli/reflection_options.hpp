@@ -43,7 +43,8 @@ ReflectionOptions reflection_options(const ReflectionCliOptions& options);
 void notice_unused_reflection_options(const ReflectionCliOptions& options, bool quiet);
 
 // A progress bar per stage of the radiosity (ReflectionOptions::on_progress), drawn where `shown`.
-std::function<void(const std::string&, std::size_t, std::size_t)> reflection_progress_bars(bool shown);
+std::function<void(const std::string&, const std::string&, std::size_t, std::size_t)> reflection_progress_bars(
+    bool shown);
 
 // The summary's `components` section for a run with reflections; `unit` says what the energy
 // balance's fluxes are per ("per unit zenith luminance", "lux").

@@ -504,9 +504,10 @@ struct Local {
 };
 
 // A stage's progress, from options.on_progress (nothing where it is unset).
-ProgressCallback stage_progress(const ReflectionOptions& options, const std::string& stage, std::size_t total) {
+ProgressCallback stage_progress(const ReflectionOptions& options, const std::string& stage, const std::string& unit,
+                                std::size_t total) {
   if (!options.on_progress) return {};
-  return [&options, stage, total](std::size_t done) { options.on_progress(stage, done, total); };
+  return [&options, stage, unit, total](std::size_t done) { options.on_progress(stage, unit, done, total); };
 }
 
 // Rows of K and first bounce at every node, in parallel over element sides.
@@ -734,8 +735,10 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   const double to_percent = 100 / t.e_out();
   result.sides_solved = t.live_side_count();
   result.sides_left_out = 2 * t.surface_count() - result.sides_solved;
-  const auto stage = [&](const std::string& name, std::size_t total) { return stage_progress(opt, name, total); };
-  MeshSolution coarse = solve_mesh(t, result, stage("radiosity: the coarse mesh's rows", 2 * t.mesh().elements.size()));
+  const auto rows_stage = [&](const std::string& name) {
+    return stage_progress(opt, name, "element sides", 2 * t.mesh().elements.size());
+  };
+  MeshSolution coarse = solve_mesh(t, result, rows_stage("radiosity: the coarse mesh's rows"));
   for (int round = 0;; ++round) {
     const RadiosityMesh coarse_mesh = t.mesh();
     t.split_all();
@@ -749,11 +752,11 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       name += "'s";
     }
     name += " rows";
-    MeshSolution fine = solve_mesh(t, result, stage(name, 2 * t.mesh().elements.size()));
+    MeshSolution fine = solve_mesh(t, result, rows_stage(name));
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
     const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result,
-                                              stage("reflections at the sensors", sensors));
+                                              stage_progress(opt, "reflections at the sensors", "sensors", sensors));
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
       SensorReflections& out = result.grids[g];

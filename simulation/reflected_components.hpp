@@ -64,9 +64,11 @@ struct ReflectionOptions {
   double element_size = 0;
   double grading = 0.5;              // farther away: edge ≤ grading × distance to them
   int max_refinements = 0;           // further rounds of uniform splitting while the tolerance is not met
-  // Called now and then with a stage's name ("rows of the coarse mesh", …), the receivers done and
-  // their number, from one thread at a time: for a progress bar over the whole run.
-  std::function<void(const std::string& stage, std::size_t done, std::size_t total)> on_progress;
+  // Called now and then with a stage's name ("radiosity: the mesh's rows", …), what it counts
+  // ("element sides", "sensors"), how many are done and their number, from one thread at a time:
+  // for a progress bar over the whole run.
+  std::function<void(const std::string& stage, const std::string& unit, std::size_t done, std::size_t total)>
+      on_progress;
 };
 
 // The reflectance of every occluder (Scene::occluders order) from its material
