@@ -12,11 +12,15 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
+#include "materials/surface_reflectance.hpp"
 #include "report/annual_reports.hpp"
 #include "report/model_reports.hpp"
 #include "report/npy_writer.hpp"
@@ -25,6 +29,7 @@
 #include "report/staged_output.hpp"
 #include "simulation/annual.hpp"
 #include "simulation/annual_metrics.hpp"
+#include "simulation/annual_reflections.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/model_inputs.hpp"
 #include "sky/weather_file.hpp"
@@ -38,6 +43,7 @@ struct AnnualCommandOptions {
   std::string weather, out, summary, hourly, image;
   std::string geometry = "exact", perez_clamps = "radiance";
   AnnualOptions annual;
+  ReflectionCliOptions reflections;
   int threads = 0;
   bool quiet = false;
 };
@@ -87,12 +93,46 @@ int run_annual(AnnualCommandOptions opt) {
   const VisibilityEngine engine(model.scene, mode);
   const WindowGroups groups = window_groups(model.scene);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
+  // ---- Reflected components (annual_reflections.hpp): one operator over all grids, on the asked
+  // mesh and on one twice as coarse (for the estimate).
+  if (!opt.quiet) notice_unused_reflection_options(opt.reflections, opt.quiet);
+  if (!opt.quiet && opt.reflections.all())
+    for (const CLI::Option* o : opt.reflections.options)
+      if (o->count() > 0 && (o->get_name() == "--reflection-tolerance" || o->get_name() == "--max-refinements"))
+        std::cerr << "notice: " << o->get_name()
+                  << " is not used by annual runs: the reflected part is computed at --element-size, its estimate "
+                     "against a mesh twice as coarse\n";
+  std::optional<ReflectionOperator> fine_op, coarse_op;
+  std::map<std::string, SurfaceReflectance> used_materials;
+  double operator_time = 0;
+  if (opt.reflections.all()) {
+    const auto tr = std::chrono::steady_clock::now();
+    SceneReflectances rho = scene_reflectances(model.scene);
+    used_materials = std::move(rho.materials);
+    ReflectionOptions ro = reflection_options(opt.reflections);
+    ro.mode = mode;
+    ro.on_progress = reflection_progress_bars(show_progress);
+    std::vector<const SensorGrid*> grid_ptrs;
+    for (const auto& g : model.grids) grid_ptrs.push_back(&g);
+    fine_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, false);
+    coarse_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, true);
+    operator_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
+  }
+  double reflected_hours_time = 0;
   std::vector<AnnualGridReport> grids;
-  for (const auto& grid : model.grids) {
+  for (std::size_t gi = 0; gi < model.grids.size(); ++gi) {
+    const SensorGrid& grid = model.grids[gi];
+    std::optional<ReflectedHours> reflected;
+    if (fine_op) {
+      reflected = reflected_hours(model.scene, *fine_op, &*coarse_op, gi, groups.group_of_aperture, groups.names.size(), sky,
+                                  opt.reflections.ground_reflectance);
+      reflected_hours_time += reflected->time_s;
+    }
     ProgressBar bar("annual " + grid.name, grid.sensors.size(), show_progress);
     AnnualGridReport g;
     g.grid = &grid;
-    g.result = annual_grid(engine, model.scene, grid, sky, opt.annual, [&](std::size_t done) { bar.update(done); });
+    g.result = annual_grid(engine, model.scene, grid, sky, opt.annual, [&](std::size_t done) { bar.update(done); },
+                           reflected ? &*reflected : nullptr);
     g.sensors = sensor_metrics(g.result.illuminance, g.result.direct_sun, g.result.sensors, g.result.hours, occupied,
                                daylight_hours);
     g.metrics = grid_metrics(g.result.illuminance, g.sensors, g.result.hours, occupied, daylight_hours);
@@ -136,12 +176,41 @@ int run_annual(AnnualCommandOptions opt) {
 
   nlohmann::json summary;
   summary["quantity"] = "annual illuminance (lux) and climate-based metrics";
-  summary["components"] = {
-      {"computed", {"sky_direct", "sun_direct"}},
-      {"left_out",
-       {{"externally_reflected", "not computed yet (obstructions and the ground are black): annual results are sky + sun "
-                                 "direct only until the reflected components land"},
-        {"internally_reflected", "not computed yet (room surfaces are black)"}}}};
+  if (fine_op) {
+    nlohmann::json mats;
+    for (const auto& [name, m] : used_materials) mats[name] = {{"reflectance", m.reflectance}, {"description", m.description}};
+    const DirectionGrid direction_grid;
+    summary["components"] = {
+        {"computed", {"sky_direct", "sun_direct", "externally_reflected", "internally_reflected"}},
+        {"ground_reflectance", opt.reflections.ground_reflectance},
+        {"materials", mats},
+        {"method",
+         "the radiosity of `daylit df --components all` written as a linear map W (sensor x mesh node, by a dense LU); "
+         "each node's first bounce per hour from the sky (its luminance interpolated bilinearly on a grid of directions, "
+         "the grid's hat functions integrated over the node's exactly visible regions by a product Gauss rule), the "
+         "sun's disk (exact at the grid's directions near the year's sun, interpolated bilinearly at the true sun) and "
+         "the far ground (rho_g E_h / pi, exact); blinds scale the light each window group lets in"},
+        {"direction_grid", {{"altitude_step_deg", 90.0 / direction_grid.rows},
+                            {"azimuth_step_deg", 360.0 / direction_grid.columns},
+                            {"gauss_points_per_direction", kReflectionRuleOrder},
+                            {"largest_triangle_deg", kReflectionTriangleDeg}}},
+        {"mesh", {{"elements", fine_op->elements},
+                  {"nodes", fine_op->nodes.size()},
+                  {"element_size", fine_op->element_size},
+                  {"coarse_mesh_elements", coarse_op->elements},
+                  {"surface_sides_solved", fine_op->sides_solved},
+                  {"surface_sides_left_out", fine_op->sides_left_out}}},
+        {"left_out", {{"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"},
+                      {"glass_reflection", "light from the room that meets a window leaves (glass's own reflection is "
+                                           "not modelled)"}}},
+        {"run_time_s", {{"operators", operator_time}, {"hours", reflected_hours_time}}}};
+  } else {
+    summary["components"] = {
+        {"computed", {"sky_direct", "sun_direct"}},
+        {"left_out",
+         {{"externally_reflected", "not computed (--components sc; --components all computes it)"},
+          {"internally_reflected", "not computed (--components sc; --components all computes it)"}}}};
+  }
   summary["weather"] = {{"path", weather.path},
                         {"format", weather_format_name(weather.format)},
                         {"place", weather.location.place},
@@ -206,8 +275,8 @@ std::function<int()> add_annual_command(CLI::App& app) {
       "basis (its error bound beside each result), the circumsolar term and the sun's disk over the same regions.\n"
       "Metrics: direct sun hours and ASE1000,250 (blinds open), DA300, cDA300, UDI (100/300/3000 lx) and\n"
       "sDA300/50% with the LM-83 blinds rule over 8:00-18:00 local standard time, EN 17037's illuminance method\n"
-      "over 4380 daylight hours. Externally and internally reflected light is not computed yet: results are\n"
-      "sky + sun direct.");
+      "over 4380 daylight hours. With --components all the externally and internally reflected light too (the\n"
+      "radiosity of `daylit df`, as a linear map of each hour's sky, sun and ground); by default sky + sun direct.");
   auto& f = opt->files;
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
@@ -236,6 +305,7 @@ std::function<int()> add_annual_command(CLI::App& app) {
                   "Put the sun's disk at the centre of its Reinhart MF patch (1 = Tregenza's 145 ... 6) instead of the true "
                   "sun, to measure what a patch-based sky does to ASE (default 0: the true sun)")
       ->check(CLI::Range(0, 6));
+  add_reflection_options(*cmd, opt->reflections, "illuminance");
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
   cmd->add_option("--hourly", opt->hourly, "NumPy .npy file of hourly illuminance per sensor (float32; grid name appended when several)");

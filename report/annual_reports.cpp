@@ -92,6 +92,19 @@ nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std
     blinds.push_back({{"window_group", group_names[k]}, {"hours_closed", closed}});
   }
   const double sensor_years = double(g.result.sensors);
+  nlohmann::json reflected = "not computed (--components sc)";
+  if (g.result.reflections) {
+    double worst = 0, worst_relative_reflected = 0;
+    for (std::size_t i = 0; i < g.result.sensors; ++i) {
+      worst = std::max(worst, g.result.max_reflection_estimate_lux[i]);
+      worst_relative_reflected = std::max(worst_relative_reflected, g.result.max_reflection_estimate_relative[i]);
+    }
+    reflected = {{"share_of_occupied_illuminance", g.result.reflected_share},
+                 {"max_estimate_lux", worst},
+                 {"max_estimate_relative", worst_relative_reflected},
+                 {"estimate_is", "per sensor and hour: |fine - half-resolution direction grid| + |fine - mesh of elements "
+                                 "twice as large|, with the hour's largest blinds factor; an estimate, not a bound"}};
+  }
   return {{"name", g.grid->name},
           {"path", g.grid->path},
           {"count", g.result.sensors},
@@ -118,6 +131,7 @@ nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std
             {"what", "per sensor and hour: the gradation fit's sampled maximum error over the u_z range the sensor sees "
                      "times (1 + |e|) times its lambert weight, plus the moments' two-order difference, plus the "
                      "circumsolar cubature's estimate, all in lux"}}},
+          {"reflected", reflected},
           {"moment_error_relative_max", g.result.max_moment_error},
           {"circumsolar_adaptive_sensor_hours", g.result.adaptive_circumsolar},
           {"run_time_s", {{"coefficients", g.result.coefficient_time_s}, {"hourly", g.result.hourly_time_s}}},

@@ -16,6 +16,7 @@
 #include "illumination/cap_clip.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "materials/glass_transmittance.hpp"
+#include "simulation/annual_reflections.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/sensor_loop.hpp"
 #include "sky/hour_sun.hpp"
@@ -280,7 +281,8 @@ std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, st
 }
 
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress) {
+                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress,
+                             const ReflectedHours* reflected) {
   const auto t0 = std::chrono::steady_clock::now();
   const WindowGroups groups = window_groups(scene);
   AnnualGridResult r;
@@ -322,6 +324,23 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
   r.illuminance.assign(n * hours, 0.0f);
   r.max_bound_lux.assign(n, 0.0);
   r.max_bound_relative.assign(n, 0.0);
+  // The reflected part's channels: the groups, then the light of surfaces lit outdoors, which
+  // enters by every group in proportion to its aperture area.
+  std::vector<double> group_area(ng, 0.0);
+  double area = 0;
+  for (std::size_t a = 0; a < scene.apertures.size(); ++a) {
+    const double w = norm(newell_normal(scene.apertures[a].polygon.vertices)) / 2;
+    group_area[std::size_t(groups.group_of_aperture[a])] += w;
+    area += w;
+  }
+  if (reflected != nullptr) {
+    if (reflected->sensors != n || reflected->hours != hours || reflected->channels != ng + 1)
+      throw Error("the reflected hours do not match the grid");
+    r.reflections = true;
+    r.max_reflection_estimate_lux.assign(n, 0.0);
+    r.max_reflection_estimate_relative.assign(n, 0.0);
+  }
+  std::vector<double> occupied_total(n, 0.0), occupied_reflected(n, 0.0);
   const auto adaptive_counts = for_each_sensor<std::size_t>(n, 4, progress, [&](std::size_t i, std::size_t& adaptive) {
     const Sensor& s = grid.sensors[i];
     const SensorCoefficients& c = coefficients[i];
@@ -352,12 +371,39 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
         total += factor * (e.sky_lux + e.sun_lux);
         bound += factor * e.bound_lux;
       }
+      if (reflected != nullptr) {
+        const float* lux = &reflected->lux[(i * hours + h) * (ng + 1)];
+        double part = 0, outdoor_factor = 0;
+        for (std::size_t g = 0; g < ng; ++g) {
+          const double factor = r.blinds_closed[h * ng + g] ? options.closed_blind_transmittance : 1.0;
+          part += factor * lux[g];
+          outdoor_factor += area > 0 ? factor * group_area[g] / area : 0;
+        }
+        part += outdoor_factor * lux[ng];
+        // The estimate with the largest factor of the hour (blinds open where any group is open).
+        double largest = 0;
+        for (std::size_t g = 0; g < ng; ++g)
+          largest = std::max(largest, r.blinds_closed[h * ng + g] ? options.closed_blind_transmittance : 1.0);
+        const double estimate = largest * reflected->estimate[i * hours + h];
+        total += part;
+        r.max_reflection_estimate_lux[i] = std::max(r.max_reflection_estimate_lux[i], estimate);
+        if (total > 0)
+          r.max_reflection_estimate_relative[i] = std::max(r.max_reflection_estimate_relative[i], estimate / total);
+        if (hour.occupied) occupied_reflected[i] += part;
+      }
+      if (hour.occupied) occupied_total[i] += total;
       r.illuminance[i * hours + h] = float(total);
       if (bound > r.max_bound_lux[i]) r.max_bound_lux[i] = bound;
       if (total > 0) r.max_bound_relative[i] = std::max(r.max_bound_relative[i], bound / total);
     }
   });
   for (std::size_t a : adaptive_counts) r.adaptive_circumsolar += a;
+  double all = 0, reflected_all = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    all += occupied_total[i];
+    reflected_all += occupied_reflected[i];
+  }
+  r.reflected_share = all > 0 ? reflected_all / all : 0;
   r.hourly_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   return r;
 }

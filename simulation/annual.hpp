@@ -10,8 +10,8 @@
 // normalisation (PerezSky). Hours in which Radiance's clamp 5 (negative luminance set to 0)
 // acted are not a sum of basis terms: they are integrated by cubature of the whole clamped
 // luminance over each region, and counted. The sun: its disk cut exactly by each region
-// (cap_clip.hpp), as `daylit illuminance` does. Reflected light is not included (see
-// SensorCoefficients::sky_direct): results are sky + sun direct.
+// (cap_clip.hpp), as `daylit illuminance` does. Reflected light (ERC + IRC) is added where the
+// caller passes it (annual_reflections.hpp); else results are sky + sun direct.
 //
 // Blinds (IES LM-83-12, §2.2.6 as the issue words it): in an occupied hour, a window group's
 // blinds close when more than `blinds_sensor_share` of the grid's sensors get at least
@@ -110,10 +110,23 @@ struct AnnualGridResult {
   std::size_t adaptive_circumsolar = 0;  // sensor-hour-groups whose circumsolar term needed adaptive cubature
   VisibilityCounters counters;
   double coefficient_time_s = 0, hourly_time_s = 0;
+  // With reflections (annual_reflections.hpp): per sensor the largest per-hour error estimate of
+  // the reflected part (lux, with blinds) and that over the hour's illuminance; the grid's
+  // reflected share of the occupied hours' illuminance (with blinds).
+  bool reflections = false;
+  std::vector<double> max_reflection_estimate_lux, max_reflection_estimate_relative;
+  double reflected_share = 0;
 };
 
+struct ReflectedHours;
+
+// `reflected`: the grid's reflected part per hour and window group (annual_reflections.hpp), added
+// to the sky and sun with each group's blinds factor; the light on surfaces lit outdoors enters by
+// every group, weighted by the groups' aperture areas (exact with one group). nullptr: sky + sun
+// direct only.
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress = {});
+                             const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress = {},
+                             const ReflectedHours* reflected = nullptr);
 
 // One sensor's sky illuminance in one hour through the given coefficients (all groups, no blinds),
 // and the bound on its error: the path annual_grid takes, for tests.

@@ -52,9 +52,8 @@ WindowGroups window_groups(const Scene& scene);
 struct SensorCoefficients {
   // The sky seen directly through the apertures: [group][basis] (group-major).
   std::vector<double> sky_direct;
-  // (DESIGN.md §4, "linear in the sky") The reflected part per basis function (ERC and IRC by
-  // radiosity, branch `reflections`) is to be added here, as one more [group][basis] vector that
-  // the hourly dot product sums with sky_direct. Until then annual results are sky + sun direct.
+  // (The reflected part is not a per-sensor moment: it comes through the reflection operator's
+  // nodes, annual_reflections.hpp.)
   // Σ τ ∫_A (n·u) T dσ per group: the weight of the hourly fit bound.
   std::vector<double> lambert;
   // The range of u_z over the regions (exact: at vertices or at an arc's top or bottom).

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "simulation/element_transport.hpp"
@@ -206,6 +208,38 @@ class Transport {
       if (ground_luminance_ > 0) e += ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
     }
     return e;
+  }
+
+  // What (x, n) sees of the sky and far ground, view by view: through each aperture, then directly
+  // (the sky box's faces), as through_apertures() and direct() integrate them, kept as regions so
+  // that any light can be put on them later (reflection_operator).
+  std::vector<LightView> views(const Vec3& x, const Vec3& n, std::size_t own, bool with_direct,
+                               VisibilityCounters& c) const {
+    std::vector<LightView> out;
+    VisibilityOptions full, half;
+    full.clip_to_horizon = false;
+    full.excluded_occluder = half.excluded_occluder = own;
+    const auto add = [&](const VisibilityEngine& eng, std::size_t i, const Aperture* ap, std::int32_t index) {
+      const SphericalRegion all = eng.visible_region(x, n, i, c, full);
+      if (all.empty()) return;
+      LightView v;
+      v.aperture = index;
+      v.above = above_horizon(eng, x, n, i, c, half);
+      const bool glazed = ap != nullptr && !ap->angular_transmittance.empty();
+      const Vec3 pane = glazed ? normalized(newell_normal(ap->polygon.vertices)) : Vec3{};
+      const auto seen = [&](const SphericalRegion& r) {
+        if (r.empty()) return 0.0;
+        return glazed ? sky_irradiance_through_glazing(r, n, SkyModel::uniform, pane, ap->angular_transmittance)
+                      : (ap != nullptr ? ap->transmittance : 1.0) * lambert(r, n);
+      };
+      v.ground = seen(all) - seen(v.above);
+      if (v.above.empty() && v.ground == 0) return;
+      out.push_back(std::move(v));
+    };
+    for (std::size_t a = 0; a < engine_.aperture_count(); ++a) add(engine_, a, &scene_.apertures[a], std::int32_t(a));
+    if (with_direct)
+      for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) add(*sky_box_, f, nullptr, -1);
+    return out;
   }
 
   // Every element's coefficients at (x, n): sink(element, side, c, through, spread), c such that
@@ -784,6 +818,112 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     coarse = std::move(fine);
   }
   return result;
+}
+
+ReflectionOperator reflection_operator(const Scene& scene, const std::vector<double>& reflectance,
+                                       const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
+                                       const ReflectionOptions& options, bool coarse, std::size_t max_nodes) {
+  const double rho_max = check_inputs(scene, reflectance, options);
+  if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
+    std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
+    message += std::to_string(options.element_size);
+    message += " is not a positive number";
+    throw Error(message);
+  }
+  ReflectionOptions opt = options;
+  if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
+  ReflectionOperator op;
+  op.element_size = opt.element_size * (coarse ? 2 : 1);
+  Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
+  if (!coarse) t.split_all();
+  const RadiosityMesh& mesh = t.mesh();
+  op.elements = mesh.elements.size();
+  op.sides_solved = t.live_side_count();
+  op.sides_left_out = 2 * t.surface_count() - op.sides_solved;
+  const std::size_t nu = t.unknowns();
+
+  // The live unknowns, numbered in mesh order; their views and rows of K, in parallel over sides.
+  std::vector<std::int64_t> index(nu, -1);
+  std::size_t n = 0;
+  for (std::size_t u = 0; u < nu; ++u)
+    if (rho_max > 0 && t.live(mesh.elements[u / 6].surface, int(u / 3 % 2))) index[u] = std::int64_t(n++);
+  if (n > max_nodes) {
+    std::string message = "the reflected components' operator would have ";
+    message += std::to_string(n);
+    message += " nodes (at most ";
+    message += std::to_string(max_nodes);
+    message += "): raise --element-size";
+    throw Error(message);
+  }
+  op.nodes.resize(n);
+  std::vector<TransportRow> rows(nu);
+  const auto row_locals = for_each_sensor<VisibilityCounters>(
+      2 * mesh.elements.size(), 8, stage_progress(opt, "reflections: the mesh's rows", "element sides", 2 * mesh.elements.size()),
+      [&](std::size_t i, VisibilityCounters& counters) {
+        const std::size_t e = i / 2;
+        const int side = int(i % 2);
+        const RadiosityElement& el = mesh.elements[e];
+        if (index[unknown(e, side, 0)] < 0) return;
+        const Vec3 normal = side == 0 ? el.normal : -1.0 * el.normal;
+        const std::size_t own = mesh.surfaces[el.surface].occluder;
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t u = unknown(e, side, k);
+          ReflectionNode& node = op.nodes[std::size_t(index[u])];
+          node.position = el.nodes[k];
+          node.normal = normal;
+          node.views = t.views(el.nodes[k], normal, own, true, counters);
+          t.transport(mesh, el.nodes[k], normal, el.surface, counters,
+                      [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
+                        for (int j = 0; j < 3; ++j)
+                          if (c[j] != 0) rows[u].emplace_back(std::uint32_t(unknown(src, src_side, j)), c[j]);
+                      });
+        }
+      });
+  for (const auto& l : row_locals) op.counters += l;
+
+  // (I − ρK)ᵀ, factorised in place.
+  Eigen::MatrixXd a = Eigen::MatrixXd::Identity(Eigen::Index(n), Eigen::Index(n));
+  std::vector<double> rho(n, 0.0);
+  for (std::size_t u = 0; u < nu; ++u) {
+    if (index[u] < 0) continue;
+    const std::size_t i = std::size_t(index[u]);
+    rho[i] = mesh.surfaces[mesh.elements[u / 6].surface].reflectance;
+    for (const auto& [j, c] : rows[u]) a(index[j], Eigen::Index(i)) -= rho[i] * c;
+  }
+  rows.clear();
+  Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(a);
+
+  std::size_t before = 0, sensors = 0;
+  for (const SensorGrid* g : grids) sensors += g->sensors.size();
+  const ProgressCallback progress = stage_progress(opt, "reflections at the sensors", "sensors", sensors);
+  for (const SensorGrid* grid : grids) {
+    const std::size_t m = grid->sensors.size();
+    Eigen::MatrixXd st = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(m));
+    std::vector<double> ground(m * scene.apertures.size(), 0.0);
+    ProgressCallback grid_progress;
+    if (progress) grid_progress = [&progress, before](std::size_t done) { progress(before + done); };
+    before += m;
+    const auto locals = for_each_sensor<VisibilityCounters>(m, 4, grid_progress, [&](std::size_t s, VisibilityCounters& counters) {
+      const Sensor& sensor = grid->sensors[s];
+      for (const LightView& v : t.views(sensor.position, sensor.normal, VisibilityOptions::kNoOccluder, false, counters))
+        ground[s * scene.apertures.size() + std::size_t(v.aperture)] += v.ground;
+      if (n == 0) return;
+      t.transport(mesh, sensor.position, sensor.normal, std::size_t(-1), counters,
+                  [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) {
+                    for (int k = 0; k < 3; ++k) st(index[unknown(e, side, k)], Eigen::Index(s)) += c[k];
+                  });
+    });
+    for (const auto& l : locals) op.counters += l;
+    std::vector<double> w(m * n, 0.0);
+    if (n > 0) {
+      const Eigen::MatrixXd z = lu.solve(st);
+      for (std::size_t s = 0; s < m; ++s)
+        for (std::size_t k = 0; k < n; ++k) w[s * n + k] = rho[k] * z(Eigen::Index(k), Eigen::Index(s));
+    }
+    op.response.push_back(std::move(w));
+    op.sensor_ground.push_back(std::move(ground));
+  }
+  return op;
 }
 
 }  // namespace daylit

@@ -120,6 +120,46 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
                                  const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
                                  const ReflectionOptions& options);
 
+// The reflected components as a linear map of the light, for runs whose light changes (annual
+// runs, DESIGN.md §5: "the reflected part linear in the sky"). The first bounce at every node of
+// the mesh is a sum over the node's views (the sky and far ground through each aperture, and
+// seen directly past every polygon); the solution and the sensors' transport are linear in it, so
+// ERC + IRC at sensor s is Σ_k W_sk E0_k with W = S (I − ρK)⁻¹ diag(ρ) (S: the sensors' rows of
+// transport, through apertures weighted by the transmittance as in reflected_components). W is
+// found once by a dense LU factorisation of (I − ρK)ᵀ (partial pivoting; I − ρK is strictly
+// diagonally dominant by columns where ρ Σ_i K_ij < 1, so it is well conditioned), and a caller
+// then forms E0 for any light.
+struct LightView {
+  std::int32_t aperture = -1;  // the aperture it is seen through (Scene::apertures); −1: directly
+  SphericalRegion above;       // the directions seen above the horizon (the sky)
+  double ground = 0;           // ∫ T (n·u) dσ over what is seen below the horizon (the far ground)
+};
+struct ReflectionNode {
+  Vec3 position, normal;
+  std::vector<LightView> views;
+};
+struct ReflectionOperator {
+  std::vector<ReflectionNode> nodes;  // the live nodes of the mesh (both sides of an element: two)
+  // Per grid, [sensor × node] row-major: ERC + IRC at the sensor per unit first-bounce irradiance
+  // at the node.
+  std::vector<std::vector<double>> response;
+  // Per grid, [sensor × aperture]: ∫ T (n·u) dσ over the far ground seen through each aperture
+  // (the part of ERC that comes straight from the far ground, not by way of a node).
+  std::vector<std::vector<double>> sensor_ground;
+  std::size_t elements = 0;
+  double element_size = 0;           // as used
+  std::size_t sides_solved = 0, sides_left_out = 0;
+  VisibilityCounters counters;
+};
+// The mesh is reflected_components' reported one (the uniform split of a mesh of elements twice
+// the asked size), or with `coarse` that mesh of twice the size itself, for the same error
+// estimate. Throws daylit::Error as reflected_components, and for a mesh of more than `max_nodes`
+// live nodes (the LU is dense: memory 8 n² bytes, time ~n³/3 operations).
+ReflectionOperator reflection_operator(const Scene& scene, const std::vector<double>& reflectance,
+                                       const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
+                                       const ReflectionOptions& options, bool coarse = false,
+                                       std::size_t max_nodes = 16000);
+
 // `reflectance`: per Scene::occluders entry, in [0, 1). `engine`: the sky component's (apertures
 // = scene apertures, occluders = opaque polygons). Throws daylit::Error for a reflectance outside
 // [0, 1), a ground reflectance outside [0, 1) or an element size that is not positive.

@@ -13,9 +13,11 @@
 #include "simulation/radiosity_solver.hpp"
 #include "simulation/reflected_components.hpp"
 #include "test_scenes.hpp"
+#include "window_room.hpp"
 
 using namespace daylit;
 using daylit::test::polygon;
+using daylit::test::WindowRoom;
 
 namespace {
 
@@ -289,31 +291,6 @@ TEST_CASE("reflected components: a black scene does no radiosity work") {
 }
 
 namespace {
-
-// A 2 × 2 × 2 m box room (floor 0.2, walls 0.5, ceiling 0.7) with an open 1 × 1 m window in its
-// south wall (y = 0, x 0.5..1.5, z 0.6..1.6) and nothing outside but the far ground (0.2): the
-// exterior is the far ground, so no occluder lies beyond any luminaire.
-struct WindowRoom {
-  Scene scene;
-  std::vector<double> reflectance;
-  SensorGrid grid;
-  WindowRoom() {
-    const double w = 2;
-    scene.occluders = {polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
-                       polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
-                       polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
-                       polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
-                       polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}}, "east"),
-                       polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6},
-                                {1.5, 0, 1.6}, {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
-                               "south")};
-    reflectance = {0.2, 0.7, 0.5, 0.5, 0.5, 0.5};
-    scene.apertures.push_back({polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 1.0});
-    grid.name = "g";
-    for (double y : {0.5, 1.0, 1.5}) grid.sensors.push_back({{1.0, y, 0.85}, {0, 0, 1}});
-    grid.sensors.push_back({{1.0, 1.2, 1.0}, {0, -1, 0}});  // facing the window: sees the far ground
-  }
-};
 
 ReflectionResult solve_room(const WindowRoom& room, double element_size, int refinements = 0) {
   const VisibilityEngine engine(room.scene, GeometryMode::exact);

@@ -1,0 +1,345 @@
+#include "simulation/annual_reflections.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "illumination/cap_clip.hpp"
+#include "illumination/gauss_legendre.hpp"
+#include "simulation/illuminance.hpp"
+
+namespace daylit {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The columns of one channel: the fine grid's sky vertices, the coarse grid's, the far ground.
+struct Columns {
+  std::size_t fine = 0, coarse = 0;
+  std::size_t coarse_at() const noexcept { return fine; }
+  std::size_t ground_at() const noexcept { return fine + coarse; }
+  std::size_t size() const noexcept { return fine + coarse + 1; }
+};
+
+// Per node: (channel × Columns::size() + column, value).
+using NodeColumns = std::vector<std::pair<std::uint32_t, double>>;
+
+struct Rule {
+  std::vector<double> x, w;  // on [0, 1]
+};
+Rule unit_rule(int n) {
+  const quadrature::GaussLegendreRule r = quadrature::gauss_legendre(n);
+  Rule u;
+  for (int i = 0; i < n; ++i) {
+    u.x.push_back(double((r.x[std::size_t(i)] + 1) / 2));
+    u.w.push_back(double(r.w[std::size_t(i)] / 2));
+  }
+  return u;
+}
+
+double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+
+// Calls point(u, weight) for the product rule on the planar triangle (a, b, c) centrally projected
+// (Duffy's collapse, as annual_coefficients.cpp), weight = dσ; the triangle is cut into four at its
+// sides' midpoints (the same projected region) while a side spans more than `max_angle`.
+template <class Point>
+void triangle_rule(const Vec3& a, const Vec3& b, const Vec3& c, const Rule& rule, double max_angle, int depth,
+                   Point&& point) {
+  const double widest = std::max({angle_between(a, b), angle_between(b, c), angle_between(c, a)});
+  if (widest > max_angle && depth > 0) {
+    const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+    triangle_rule(a, ab, ca, rule, max_angle, depth - 1, point);
+    triangle_rule(ab, b, bc, rule, max_angle, depth - 1, point);
+    triangle_rule(ca, bc, c, rule, max_angle, depth - 1, point);
+    triangle_rule(ab, bc, ca, rule, max_angle, depth - 1, point);
+    return;
+  }
+  const Vec3 e1 = b - a, e2 = c - a;
+  const double det = dot(a, cross(e1, e2));
+  if (det == 0) return;
+  for (std::size_t p = 0; p < rule.x.size(); ++p)
+    for (std::size_t q = 0; q < rule.x.size(); ++q) {
+      const double x = rule.x[p], y = rule.x[q];
+      const Vec3 v = a + (x * (1 - y)) * e1 + (x * y) * e2;
+      const double r = norm(v);
+      point((1 / r) * v, rule.w[p] * rule.w[q] * x * det / (r * r * r));
+    }
+}
+
+// The columns of every node of an operator.
+std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperator& op, const DirectionGrid& fine,
+                                      const DirectionGrid& coarse, const std::vector<int>& group_of_aperture, std::size_t groups,
+                                      const Columns& columns) {
+  static const Rule rule = unit_rule(kReflectionRuleOrder);
+  const double max_angle = kReflectionTriangleDeg * kPi / 180;
+  const std::size_t width = columns.size(), total = (groups + 1) * width;
+  std::vector<NodeColumns> out(op.nodes.size());
+  tbb::enumerable_thread_specific<std::vector<double>> scratch([total] { return std::vector<double>(total, 0.0); });
+  tbb::parallel_for(std::size_t(0), op.nodes.size(), [&](std::size_t k) {
+    std::vector<double>& acc = scratch.local();
+    const ReflectionNode& node = op.nodes[k];
+    for (const LightView& view : node.views) {
+      const std::size_t channel = view.aperture >= 0 ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
+      double* row = acc.data() + channel * width;
+      const Aperture* aperture = view.aperture >= 0 ? &scene.apertures[std::size_t(view.aperture)] : nullptr;
+      const auto transmittance = [&](const Vec3& u) { return aperture ? aperture_transmittance(*aperture, u) : 1.0; };
+      row[columns.ground_at()] += view.ground;
+      if (view.above.empty()) continue;
+      // The sky: the hat functions of both grids.
+      for (const DirectionLoop& loop : view.above.loops)
+        for (std::size_t i = 1; i + 1 < loop.size(); ++i)
+          triangle_rule(loop[0], loop[i], loop[i + 1], rule, max_angle, 6, [&](const Vec3& u, double dsigma) {
+            const double w = dsigma * dot(node.normal, u) * transmittance(u);
+            std::size_t v[4];
+            double f[4];
+            fine.interpolation(u, v, f);
+            for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
+            coarse.interpolation(u, v, f);
+            for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
+          });
+    }
+    NodeColumns& entries = out[k];
+    for (std::size_t c = 0; c < total; ++c)
+      if (acc[c] != 0) {
+        entries.emplace_back(std::uint32_t(c), acc[c]);
+        acc[c] = 0;
+      }
+  });
+  return out;
+}
+
+// D = W Q for one grid, one row-major matrix per channel; the sensors' own far ground through
+// each aperture added to its group's ground column.
+std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t grid_index,
+                                      const std::vector<NodeColumns>& q, const std::vector<int>& group_of_aperture,
+                                      std::size_t groups, const Columns& columns, std::size_t apertures) {
+  const std::vector<double>& w = op.response[grid_index];
+  const std::vector<double>& ground = op.sensor_ground[grid_index];
+  const std::size_t nodes = op.nodes.size(), sensors = apertures > 0 ? ground.size() / apertures
+                                                                        : (nodes > 0 ? w.size() / nodes : 0);
+  const std::size_t width = columns.size();
+  std::vector<RowMatrix> d(groups + 1, RowMatrix::Zero(Eigen::Index(sensors), Eigen::Index(width)));
+  tbb::parallel_for(std::size_t(0), sensors, [&](std::size_t s) {
+    for (std::size_t k = 0; k < nodes; ++k) {
+      const double wk = w[s * nodes + k];
+      if (wk == 0) continue;
+      for (const auto& [c, v] : q[k]) d[c / width](Eigen::Index(s), Eigen::Index(c % width)) += wk * v;
+    }
+    for (std::size_t a = 0; a < apertures; ++a)
+      d[std::size_t(group_of_aperture[a])](Eigen::Index(s), Eigen::Index(columns.ground_at())) += ground[s * apertures + a];
+  });
+  return d;
+}
+
+// A cap around each view's region (its vertices' mean direction, the largest angle to them; a
+// whole hemisphere where that reaches 81°, since a cap is convex only below 90°), so that an hour's
+// sun far from it is left out before the exact cut.
+struct ViewCap {
+  Vec3 centre{0, 0, 1};
+  double radius = kPi;
+};
+std::vector<std::vector<ViewCap>> view_caps(const ReflectionOperator& op) {
+  std::vector<std::vector<ViewCap>> caps(op.nodes.size());
+  tbb::parallel_for(std::size_t(0), op.nodes.size(), [&](std::size_t k) {
+    for (const LightView& view : op.nodes[k].views) {
+      ViewCap cap;
+      Vec3 sum{0, 0, 0};
+      for (const DirectionLoop& loop : view.above.loops)
+        for (const Vec3& p : loop) sum = sum + normalized(p);
+      if (norm(sum) > 0) {
+        cap.centre = normalized(sum);
+        double r = 0;
+        for (const DirectionLoop& loop : view.above.loops)
+          for (const Vec3& p : loop) r = std::max(r, angle_between(cap.centre, p));
+        if (r < 0.45 * kPi) cap.radius = r;
+      }
+      caps[k].push_back(cap);
+    }
+  });
+  return caps;
+}
+
+// The sun's first bounce at every node in lux, per channel ([channel][node]): its disk cut exactly
+// by each view's region (cap_lambert), glass's T at the disk's centre (as direct_sun_lux).
+void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const std::vector<std::vector<ViewCap>>& caps,
+                      const std::vector<int>& group_of_aperture, std::size_t groups, const Vec3& sun, double e_dn,
+                      std::vector<Eigen::MatrixXd>& out, Eigen::Index column) {
+  const double rho = kSunHalfAngleDeg * kPi / 180;
+  const double radiance = e_dn / (kPi * std::sin(rho) * std::sin(rho));
+  for (std::size_t k = 0; k < op.nodes.size(); ++k) {
+    const ReflectionNode& node = op.nodes[k];
+    if (dot(node.normal, sun) < -std::sin(rho)) continue;
+    for (std::size_t v = 0; v < node.views.size(); ++v) {
+      const LightView& view = node.views[v];
+      if (view.above.empty()) continue;
+      const ViewCap& cap = caps[k][v];
+      if (cap.radius < kPi && angle_between(cap.centre, sun) > cap.radius + 2 * rho) continue;
+      const double visible = cap_lambert(view.above, sun, rho, node.normal);
+      if (visible == 0) continue;
+      const Aperture* a = view.aperture >= 0 ? &scene.apertures[std::size_t(view.aperture)] : nullptr;
+      const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
+      out[channel](Eigen::Index(k), column) += radiance * visible * (a != nullptr ? aperture_transmittance(*a, sun) : 1.0);
+    }
+  }
+}
+
+}  // namespace
+
+Vec3 DirectionGrid::direction(std::size_t v) const noexcept {
+  const int i = int(v / std::size_t(columns)), j = int(v % std::size_t(columns));
+  if (i == rows) return {0, 0, 1};
+  const double alt = i * (kPi / 2) / rows, az = j * (2 * kPi) / columns;
+  return {std::cos(alt) * std::cos(az), std::cos(alt) * std::sin(az), std::sin(alt)};
+}
+
+void DirectionGrid::interpolation(const Vec3& u, std::size_t vertex_out[4], double weight_out[4]) const noexcept {
+  const double alt = std::asin(std::clamp(u.z / norm(u), 0.0, 1.0));
+  double az = std::atan2(u.y, u.x);
+  if (az < 0) az += 2 * kPi;
+  const double fi = alt / (kPi / 2) * rows, fj = az / (2 * kPi) * columns;
+  const int i = std::clamp(int(std::floor(fi)), 0, rows - 1);
+  const int j = std::clamp(int(std::floor(fj)), 0, columns - 1);
+  const double a = std::clamp(fi - i, 0.0, 1.0), b = std::clamp(fj - j, 0.0, 1.0);
+  vertex_out[0] = vertex(i, j);
+  vertex_out[1] = vertex(i, j + 1);
+  vertex_out[2] = vertex(i + 1, j);
+  vertex_out[3] = vertex(i + 1, j + 1);
+  weight_out[0] = (1 - a) * (1 - b);
+  weight_out[1] = (1 - a) * b;
+  weight_out[2] = a * (1 - b);
+  weight_out[3] = a * b;
+}
+
+ReflectedHours reflected_hours(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
+                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
+                               const AnnualSky& sky, double ground_reflectance) {
+  std::vector<HourLight> lights(sky.hours.size());
+  for (std::size_t h = 0; h < sky.hours.size(); ++h) {
+    const AnnualHour& hour = sky.hours[h];
+    if (!hour.sky) continue;
+    const PerezSky* perez = &*hour.perez;
+    const double scale = hour.scale;
+    lights[h].luminance = [perez, scale](const Vec3& u) { return scale * perez->luminance_function(u); };
+    lights[h].sun = hour.sun;
+    lights[h].direct_normal_lux = hour.direct_normal_lux;
+    lights[h].horizontal_lux = hour.diffuse_horizontal_lux + hour.direct_normal_lux * std::max(0.0, hour.sun.z);
+  }
+  return reflected_light(scene, fine, coarse, grid_index, group_of_aperture, groups, lights, ground_reflectance);
+}
+
+ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fine_op, const ReflectionOperator* coarse_op,
+                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
+                               const std::vector<HourLight>& sky_hours, double ground_reflectance) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const DirectionGrid fine;
+  DirectionGrid coarse;
+  coarse.rows = fine.rows / 2;
+  coarse.columns = fine.columns / 2;
+  const auto coarse_to_fine = [&](std::size_t v) {
+    return fine.vertex(2 * int(v / std::size_t(coarse.columns)), 2 * int(v % std::size_t(coarse.columns)));
+  };
+  const Columns columns{fine.vertices(), coarse.vertices()};
+  const std::size_t width = columns.size(), apertures = scene.apertures.size();
+
+  // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun, the
+  // views' caps.
+  struct Mesh {
+    const ReflectionOperator* op;
+    std::vector<RowMatrix> d;
+    std::vector<std::vector<ViewCap>> caps;
+  };
+  std::vector<Mesh> meshes;
+  for (const ReflectionOperator* op : {&fine_op, coarse_op}) {
+    if (op == nullptr) continue;
+    Mesh m{op, {}, view_caps(*op)};
+    const std::vector<NodeColumns> q = node_columns(scene, *op, fine, coarse, group_of_aperture, groups, columns);
+    m.d = sensor_columns(*op, grid_index, q, group_of_aperture, groups, columns, apertures);
+    meshes.push_back(std::move(m));
+  }
+
+  ReflectedHours out;
+  out.sensors = std::size_t(meshes.front().d.front().rows());
+  out.hours = sky_hours.size();
+  out.channels = groups + 1;
+  out.nodes = fine_op.nodes.size();
+  out.columns = width;
+  out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
+  out.estimate.assign(out.sensors * out.hours, 0.0f);
+
+  std::vector<std::size_t> lit;
+  for (std::size_t h = 0; h < sky_hours.size(); ++h)
+    if (sky_hours[h].luminance) lit.push_back(h);
+  // The sky at the horizon row is its limit from above (a luminance function is 0 at u_z = 0 and
+  // below, where the hat functions of the lowest band still reach).
+  std::vector<Vec3> directions(fine.vertices());
+  for (std::size_t v = 0; v < fine.vertices(); ++v) {
+    directions[v] = fine.direction(v);
+    if (v < std::size_t(fine.columns)) directions[v] = normalized(directions[v] + Vec3{0, 0, 1e-9});
+  }
+  // Blocks of hours: column 2b of F is the hour's sky on the fine grid, 2b + 1 on the coarse one
+  // (the far ground in both); the sun's first bounce per node and hour, exact.
+  constexpr std::size_t kBlock = 128;
+  for (std::size_t start = 0; start < lit.size(); start += kBlock) {
+    const std::size_t count = std::min(kBlock, lit.size() - start);
+    Eigen::MatrixXd f = Eigen::MatrixXd::Zero(Eigen::Index(width), Eigen::Index(2 * count));
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
+      const HourLight& hour = sky_hours[lit[start + b]];
+      const Eigen::Index cf = Eigen::Index(2 * b), cc = cf + 1;
+      for (std::size_t v = 0; v < fine.vertices(); ++v) f(Eigen::Index(v), cf) = hour.luminance(directions[v]);
+      for (std::size_t v = 0; v < coarse.vertices(); ++v)
+        f(Eigen::Index(columns.coarse_at() + v), cc) = f(Eigen::Index(coarse_to_fine(v)), cf);
+      f(Eigen::Index(columns.ground_at()), cf) = f(Eigen::Index(columns.ground_at()), cc) =
+          ground_reflectance * hour.horizontal_lux / kPi;
+    });
+    std::vector<Eigen::MatrixXd> totals;  // per mesh: sensors × 2·count
+    for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+      const Mesh& m = meshes[mi];
+      const std::size_t n = m.op->nodes.size();
+      std::vector<Eigen::MatrixXd> sun(groups + 1, Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(count)));
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
+        const HourLight& hour = sky_hours[lit[start + b]];
+        if (hour.direct_normal_lux > 0)
+          sun_first_bounce(scene, *m.op, m.caps, group_of_aperture, groups, hour.sun, hour.direct_normal_lux, sun,
+                           Eigen::Index(b));
+      });
+      Eigen::MatrixXd total = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), Eigen::Index(2 * count));
+      for (std::size_t g = 0; g <= groups; ++g) {
+        Eigen::MatrixXd r = m.d[g] * f;
+        if (n > 0) {
+          const Eigen::Map<const RowMatrix> w(m.op->response[grid_index].data(), Eigen::Index(out.sensors), Eigen::Index(n));
+          const Eigen::MatrixXd rs = w * sun[g];
+          for (std::size_t b = 0; b < count; ++b) {
+            r.col(Eigen::Index(2 * b)) += rs.col(Eigen::Index(b));
+            r.col(Eigen::Index(2 * b + 1)) += rs.col(Eigen::Index(b));
+          }
+        }
+        total += r;
+        if (mi == 0)
+          for (std::size_t s = 0; s < out.sensors; ++s)
+            for (std::size_t b = 0; b < count; ++b)
+              out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r(Eigen::Index(s), Eigen::Index(2 * b)));
+      }
+      totals.push_back(std::move(total));
+    }
+    for (std::size_t s = 0; s < out.sensors; ++s)
+      for (std::size_t b = 0; b < count; ++b) {
+        const Eigen::Index i = Eigen::Index(s), cf = Eigen::Index(2 * b);
+        double e = std::abs(totals[0](i, cf) - totals[0](i, cf + 1));
+        if (totals.size() > 1) e += std::abs(totals[0](i, cf) - totals[1](i, cf));
+        out.estimate[s * out.hours + lit[start + b]] = float(e);
+      }
+  }
+  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace daylit
