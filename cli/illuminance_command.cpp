@@ -506,7 +506,8 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       "hour (--weather F.epw|F.wea --time T) or from the hour's irradiances given. The sun is a uniform disk 0.533\n"
       "degrees across, cut exactly by what each sensor sees, scaled by --direct-normal (or the weather's hour). Its\n"
       "position: --time and --site (NREL SPA), or --sun-zenith and --sun-azimuth.\n"
-      "Externally and internally reflected light is not computed.");
+      "With --components all also the externally and internally reflected light (ERC, IRC), by the radiosity of\n"
+      "`daylit df --components all` lit by this sky and sun; by default direct light alone.");
   auto& f = opt->files;
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
