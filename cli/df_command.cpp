@@ -6,6 +6,7 @@
 #include <tbb/info.h>
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -79,6 +80,7 @@ int run_df(DfOptions opt) {
   std::vector<GridReport> reports;
   double reflections_time_s = 0;
   const std::vector<std::string> hosts = mpi::hosts();
+  const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
   std::vector<mpi::ShardedGrid> shards;
   for (const auto& grid : grids) {
     const auto tg = std::chrono::steady_clock::now();
@@ -173,7 +175,7 @@ int run_df(DfOptions opt) {
   summary["scene"] = scene_json(scene, engine);
   if (mpi::several())
     summary["mpi"] = mpi::summary_json(
-        shards, hosts, threads, "the sky component (and its gradient): every grid's sensors in blocks, one per rank",
+        shards, hosts, rank_threads, "the sky component (and its gradient): every grid's sensors in blocks, one per rank",
         "on every rank: reading the model and building the visibility engine; on rank 0 alone: the reflected components "
         "(one radiosity solution for the whole model; the other ranks wait), --refine's added sensors, the statistics "
         "and every output");

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -294,6 +295,7 @@ int run_illuminance(IlluminanceOptions opt) {
   const bool show_progress = !opt.quiet && stderr_is_terminal();
   std::vector<GridLux> grids;
   const std::vector<std::string> hosts = mpi::hosts();
+  const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
   std::vector<mpi::ShardedGrid> shards;
   for (const auto& grid : model.grids) {
     const auto tg = std::chrono::steady_clock::now();
@@ -473,7 +475,7 @@ int run_illuminance(IlluminanceOptions opt) {
   summary["scene"] = scene_json(model.scene, engine);
   if (mpi::several())
     summary["mpi"] = mpi::summary_json(
-        shards, hosts, threads, "the sky and sun illuminance: every grid's sensors in blocks, one per rank",
+        shards, hosts, rank_threads, "the sky and sun illuminance: every grid's sensors in blocks, one per rank",
         "on every rank: reading the model, the sky's setup (E_out, a CIE fit, the Perez normalisation) and the "
         "visibility engine; on rank 0 alone: the reflected components (one radiosity solution for the whole model; the "
         "other ranks wait), the statistics and every output");

@@ -28,8 +28,9 @@ SensorGrid sub_grid(const SensorGrid& grid, SensorBlock b) {
 RankFailure::RankFailure(int c, std::vector<std::string> m)
     : std::runtime_error("another MPI rank failed"), code(c), messages(std::move(m)) {}
 
-nlohmann::json summary_json(const std::vector<ShardedGrid>& grids, const std::vector<std::string>& hosts, int threads,
-                            const std::string& sharded, const std::string& not_sharded) {
+nlohmann::json summary_json(const std::vector<ShardedGrid>& grids, const std::vector<std::string>& hosts,
+                            const std::vector<std::uint64_t>& threads, const std::string& sharded,
+                            const std::string& not_sharded) {
   const int n = int(hosts.size());
   nlohmann::json per_rank = nlohmann::json::array(), per_grid = nlohmann::json::array();
   std::vector<std::size_t> rank_sensors(hosts.size(), 0);
@@ -47,10 +48,12 @@ nlohmann::json summary_json(const std::vector<ShardedGrid>& grids, const std::ve
                         {"compute_time_s_per_rank", g.time_s}});
   }
   for (int r = 0; r < n; ++r)
-    per_rank.push_back({{"rank", r}, {"host", hosts[std::size_t(r)]}, {"sensors", rank_sensors[std::size_t(r)]},
+    per_rank.push_back({{"rank", r},
+                        {"host", hosts[std::size_t(r)]},
+                        {"threads", threads[std::size_t(r)]},
+                        {"sensors", rank_sensors[std::size_t(r)]},
                         {"compute_time_s", rank_time[std::size_t(r)]}});
   return {{"ranks", n},
-          {"threads_per_rank", threads},
           {"sharded", sharded},
           {"not_sharded", not_sharded},
           {"blocks", "each rank computes a contiguous block of every grid's sensors (sizes differing by at most one, in "

@@ -82,14 +82,16 @@ std::vector<std::string> hosts();
 // The summary's "mpi" object (written only when several ranks ran): how many, on which hosts,
 // what was sharded and what not, and per rank its sensors and the seconds it computed them in
 // (per grid, and summed over the grids and ranks). ShardedGrid::time_s is gather_per_rank() of
-// the rank's compute time for the grid; `hosts` is hosts().
+// the rank's compute time for the grid; `hosts` is hosts(), `threads` gather_per_rank() of each
+// rank's TBB threads (they differ where the nodes or the launcher's bindings do).
 struct ShardedGrid {
   std::string name;
   std::size_t sensors = 0;
   std::vector<double> time_s;  // per rank
 };
-nlohmann::json summary_json(const std::vector<ShardedGrid>& grids, const std::vector<std::string>& hosts, int threads,
-                            const std::string& sharded, const std::string& not_sharded);
+nlohmann::json summary_json(const std::vector<ShardedGrid>& grids, const std::vector<std::string>& hosts,
+                            const std::vector<std::uint64_t>& threads, const std::string& sharded,
+                            const std::string& not_sharded);
 
 // Another rank failed: thrown by an exchange or by finish() once the ranks have agreed on it.
 struct RankFailure : std::runtime_error {

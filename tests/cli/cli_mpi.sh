@@ -52,6 +52,7 @@ for s, n in ((n2, 2), (n3, 3)):
     assert sum(r["sensors"] for r in m["per_rank"]) == g["count"] == 2400, m["per_rank"]
     assert m["grids"][0]["sensors_per_rank"] == [2400 // n] * n, m["grids"][0]
     assert all(t >= 0 for t in m["grids"][0]["compute_time_s_per_rank"]) and len(m["grids"][0]["compute_time_s_per_rank"]) == n
+    assert all(r["threads"] == 1 and r["host"] for r in m["per_rank"]), m["per_rank"]
     assert abs(m["compute_time_s_sum"] - sum(r["compute_time_s"] for r in m["per_rank"])) < 1e-9
     # Counters summed over the ranks are the single process's; so are the statistics.
     assert g["left_out"] == one["grids"][0]["left_out"], (g["left_out"], one["grids"][0]["left_out"])
