@@ -2,8 +2,9 @@
 # `mpirun -n N daylit ...` (DAYLIT_MPI=ON; README "Beyond one machine: MPI"): the sensors are
 # sharded over the ranks and gathered on rank 0, so every output file is byte for byte the single
 # process's, whatever N (2, and 3 for blocks of unequal size): df's sky component with gradients
-# and over two grids, df --components all on the room (reflections on rank 0), illuminance with
-# the sun, annual (on rank 0 alone) with its .npy. The summary counts the ranks, their sensors
+# and over two grids, df --components all on the room (reflections on rank 0), df --refine, more
+# ranks than sensors, illuminance with the sun (and with --components all), annual (on rank 0
+# alone) with its .npy. The summary counts the ranks, their sensors
 # add up to each grid's and the counters summed over them are the single process's. A failure
 # on one rank only (its own bad grid, by MPMD) fails every rank with that rank's message and no
 # output; bad input read alike by every rank is reported once.
@@ -93,6 +94,18 @@ for s in (one, two): del s["components"]["run_time_s"]
 assert two["components"] == one["components"]  # mesh, solver, energy balance, error: rank 0's, as one process's
 PY
 
+# ---- df --refine (the added sensors on rank 0), and more ranks than sensors (a rank with none).
+"$daylit" df "${room[@]}" --refine --out "$work/refine.csv" || fail "df --refine, one process"
+mpi 2 df "${room[@]}" --refine --out "$work/refine-2.csv" || fail "df --refine, 2 ranks"
+same "df --refine, 2 ranks" "$work/refine.csv" "$work/refine-2.csv"
+head -2 "$samples/room/grid.pts" > "$work/two.pts"
+few=(--scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$work/two.pts" --threads 1 --quiet)
+"$daylit" df "${few[@]}" --out "$work/few.csv" || fail "df on 2 sensors, one process"
+mpi 3 df "${few[@]}" --out "$work/few-3.csv" --summary "$work/few-3.json" || fail "df on 2 sensors, 3 ranks"
+same "df on 2 sensors, 3 ranks" "$work/few.csv" "$work/few-3.csv"
+python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["mpi"]["grids"][0]["sensors_per_rank"] == [1, 1, 0]' \
+  "$work/few-3.json" || fail "2 sensors over 3 ranks: not blocks of 1, 1, 0"
+
 # ---- illuminance: a CIE clear sky (cubature per region) and the sun on the office.
 lux=("${office[@]}" --quiet --sky cie-12 --sun-zenith 40 --sun-azimuth 200 --direct-normal 70000 --diffuse-horizontal 15000)
 "$daylit" illuminance "${lux[@]}" --out "$work/lux.csv" --summary "$work/lux.json" || fail "illuminance, one process"
@@ -108,6 +121,14 @@ assert g2["share_in_direct_sun"] == g1["share_in_direct_sun"] > 0
 assert two["sky"]["quadrature_evaluations"] == one["sky"]["quadrature_evaluations"] > 0
 assert two["sky"]["sky_error_bound_lux_max"] == one["sky"]["sky_error_bound_lux_max"]
 PY
+
+# illuminance --components all: the room lit by the sky and the sun, reflections on rank 0
+# (coarse elements, to keep it short).
+sunlit=("${room[@]}" --components all --element-size 1.8 --sky cie-12 --sun-zenith 40 --sun-azimuth 200
+        --direct-normal 70000 --diffuse-horizontal 15000)
+"$daylit" illuminance "${sunlit[@]}" --out "$work/lux-all.csv" || fail "illuminance --components all, one process"
+mpi 2 illuminance "${sunlit[@]}" --out "$work/lux-all-2.csv" || fail "illuminance --components all, 2 ranks"
+same "illuminance --components all, 2 ranks" "$work/lux-all.csv" "$work/lux-all-2.csv"
 
 # ---- annual: on rank 0 alone (README), the same CSV and .npy; the summary says it.
 head -12 "$samples/office/grid.pts" > "$work/grid12.pts"
