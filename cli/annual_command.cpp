@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/mpi_shards.hpp"
 #include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
 #include "materials/surface_reflectance.hpp"
@@ -75,6 +76,13 @@ int run_annual(AnnualCommandOptions opt) {
   ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
+  // Under mpirun, annual runs on rank 0 alone (main.cpp): the LM-83 blinds rule needs, in every
+  // hour, the direct sun of all of a grid's sensors before the hourly pass, and annual_grid does
+  // both passes inside one call, so its sensors cannot be split without a library hook (README).
+  if (mpi::several() && !opt.quiet)
+    std::cerr << fmt::format("notice: annual is not sharded over MPI ranks: rank 0 computes every sensor, the other {} "
+                             "rank{} wait\n",
+                             mpi::ranks() - 1, mpi::ranks() > 2 ? "s" : "");
   const auto t_sky = std::chrono::steady_clock::now();
   const AnnualSky sky = annual_sky(weather, *site, opt.annual);
   const double sky_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_sky).count();
@@ -243,6 +251,11 @@ int run_annual(AnnualCommandOptions opt) {
     summary["hourly_file"] = {{"format", ".npy 1.0, little-endian float32, shape (sensors, records): illuminance with "
                                          "blinds (lux), rows in grid order, columns in weather-file order"}};
   summary["threads"] = threads;
+  if (mpi::several())
+    summary["mpi"] = {{"ranks", mpi::ranks()},
+                      {"sharded", "nothing: rank 0 computes every sensor and hour; the other ranks wait"},
+                      {"why", "the LM-83 blinds rule needs the direct sun of every sensor of a grid in each hour before "
+                              "the hourly pass, and annual_grid does both passes in one call"}};
   summary["run_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!opt.summary.empty()) {
     std::ofstream f(outputs.stage(opt.summary));

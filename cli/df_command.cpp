@@ -6,6 +6,7 @@
 #include <tbb/info.h>
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/model_options.hpp"
+#include "cli/mpi_shards.hpp"
 #include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
@@ -52,8 +54,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int run_df(const DfOptions& opt) {
+int run_df(DfOptions opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (!mpi::root()) opt.quiet = true;  // under MPI, rank 0 alone speaks (and writes)
   if (opt.reflections.all() && (opt.gradient || opt.refine))
     throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
@@ -76,11 +79,24 @@ int run_df(const DfOptions& opt) {
 
   std::vector<GridReport> reports;
   double reflections_time_s = 0;
+  const std::vector<std::string> hosts = mpi::hosts();
+  const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
+  std::vector<mpi::ShardedGrid> shards;
   for (const auto& grid : grids) {
     const auto tg = std::chrono::steady_clock::now();
-    ProgressBar bar("df " + grid.name, grid.sensors.size(), show_progress);
+    // The sky component is sharded (cli/mpi_shards.hpp): this rank computes its block of the
+    // grid's sensors (all of them with one rank) and rank 0 gathers the blocks in grid order, so
+    // that from here on it holds the whole grid's values as one process computes them.
+    const SensorGrid block = mpi::sub_grid(grid, mpi::block(grid.sensors.size()));
+    ProgressBar bar("df " + grid.name, block.sensors.size(), show_progress);
     const bool gradient = opt.gradient || opt.refine;
-    SkyComponentResult sc = sky_component(engine, scene, grid, sky, [&](std::size_t done) { bar.update(done); }, gradient);
+    SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient);
+    shards.push_back({grid.name, grid.sensors.size(), {seconds_since(tg)}});
+    sc.sc_percent = mpi::gather(sc.sc_percent, grid.sensors.size());
+    if (gradient) sc.sc_gradient = mpi::gather(sc.sc_gradient, grid.sensors.size());
+    sc.counters = mpi::sum(sc.counters);
+    shards.back().time_s = mpi::gather_per_rank(shards.back().time_s.front());
+    if (!mpi::root()) continue;  // the statistics, refinement and reports are rank 0's
     GridReport r;
     r.grid = &grid;
     r.sc_percent = sc.sc_percent;
@@ -93,6 +109,11 @@ int run_df(const DfOptions& opt) {
     r.run_time_s = seconds_since(tg);
     reports.push_back(std::move(r));
   }
+
+  // The other ranks' part of the run ends here. Rank 0 solves the reflected components alone:
+  // the radiosity is one solution for the whole model, whose mesh (its automatic element size,
+  // the surface sides left out) depends on every grid's sensors, so it is not sharded.
+  if (!mpi::root()) return 0;
 
   // ---- Reflected components (DESIGN.md §4), over all grids at once: one radiosity solution.
   std::optional<ReflectionResult> reflections;
@@ -152,6 +173,12 @@ int run_df(const DfOptions& opt) {
   if (model.site) summary["site"] = site_json(*model.site, opt.files.site);
   if (model.context) summary["context"] = context_json(*model.context, opt.files.context);
   summary["scene"] = scene_json(scene, engine);
+  if (mpi::several())
+    summary["mpi"] = mpi::summary_json(
+        shards, hosts, rank_threads, "the sky component (and its gradient): every grid's sensors in blocks, one per rank",
+        "on every rank: reading the model and building the visibility engine; on rank 0 alone: the reflected components "
+        "(one radiosity solution for the whole model; the other ranks wait), --refine's added sensors, the statistics "
+        "and every output");
   for (const auto& r : reports) {
     const auto& s = r.statistics;
     nlohmann::json shares;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -23,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/model_options.hpp"
+#include "cli/mpi_shards.hpp"
 #include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
@@ -232,6 +234,7 @@ nlohmann::json perez_json(const PerezHour& h, const PerezSetup& setup) {
 
 int run_illuminance(IlluminanceOptions opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (!mpi::root()) opt.quiet = true;  // under MPI, rank 0 alone speaks (and writes)
   const SkyName sky_name = parse_sky_name(opt.sky);
   const int type = sky_name.cie_type;
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
@@ -291,15 +294,35 @@ int run_illuminance(IlluminanceOptions opt) {
   const VisibilityEngine engine(model.scene, mode);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
   std::vector<GridLux> grids;
+  const std::vector<std::string> hosts = mpi::hosts();
+  const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
+  std::vector<mpi::ShardedGrid> shards;
   for (const auto& grid : model.grids) {
     const auto tg = std::chrono::steady_clock::now();
-    ProgressBar bar("illuminance " + grid.name, grid.sensors.size(), show_progress);
-    GridLux g{&grid, illuminance(engine, model.scene, grid, c, [&](std::size_t done) { bar.update(done); }), {}, {}, 0, {}, {}, {}};
+    // Sharded as in df (cli/mpi_shards.hpp): this rank's block of the sensors, gathered on rank 0
+    // in grid order. The sky's setup above (its E_out, the CIE fit, the Perez normalisation) is
+    // done by every rank: it is per run, not per sensor.
+    const SensorGrid block = mpi::sub_grid(grid, mpi::block(grid.sensors.size()));
+    ProgressBar bar("illuminance " + grid.name, block.sensors.size(), show_progress);
+    GridLux g{&grid, illuminance(engine, model.scene, block, c, [&](std::size_t done) { bar.update(done); }), {}, {}, 0, {}, {}, {}};
+    shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(std::chrono::steady_clock::now() - tg).count()}});
+    g.result.sky_lux = mpi::gather(g.result.sky_lux, grid.sensors.size());
+    g.result.sun_lux = mpi::gather(g.result.sun_lux, grid.sensors.size());
+    g.result.sky_error_lux = mpi::gather(g.result.sky_error_lux, grid.sensors.size());
+    g.result.counters = mpi::sum(g.result.counters);
+    g.result.quadrature_evaluations = long(mpi::sum(std::uint64_t(g.result.quadrature_evaluations)));
+    g.result.regions_by_quadrature = std::size_t(mpi::sum(std::uint64_t(g.result.regions_by_quadrature)));
+    shards.back().time_s = mpi::gather_per_rank(shards.back().time_s.front());
+    if (!mpi::root()) continue;  // the totals, statistics and reports are rank 0's
     for (std::size_t i = 0; i < grid.sensors.size(); ++i) g.total.push_back(g.result.sky_lux[i] + g.result.sun_lux[i]);
     g.statistics = grid_statistics(g.total, kIlluminanceThresholds);
     g.run_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tg).count();
     grids.push_back(std::move(g));
   }
+
+  // The other ranks' part ends here: rank 0 solves the reflected components alone (one radiosity
+  // solution for the whole model, as in df) and writes every output.
+  if (!mpi::root()) return 0;
 
   // ---- Reflected components (--components all): one radiosity solution lit by this sky and sun.
   notice_unused_reflection_options(opt.reflections, opt.quiet);
@@ -450,6 +473,12 @@ int run_illuminance(IlluminanceOptions opt) {
     summary["context"] = context;
   }
   summary["scene"] = scene_json(model.scene, engine);
+  if (mpi::several())
+    summary["mpi"] = mpi::summary_json(
+        shards, hosts, rank_threads, "the sky and sun illuminance: every grid's sensors in blocks, one per rank",
+        "on every rank: reading the model, the sky's setup (E_out, a CIE fit, the Perez normalisation) and the "
+        "visibility engine; on rank 0 alone: the reflected components (one radiosity solution for the whole model; the "
+        "other ranks wait), the statistics and every output");
   for (const auto& g : grids) {
     const auto& s = g.statistics;
     nlohmann::json shares;

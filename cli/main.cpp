@@ -4,6 +4,7 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "cli/annual_command.hpp"
 #include "cli/bench_command.hpp"
@@ -11,10 +12,14 @@
 #include "cli/eval_command.hpp"
 #include "cli/grid_command.hpp"
 #include "cli/illuminance_command.hpp"
+#include "cli/mpi_shards.hpp"
 #include "cli/sun_command.hpp"
 #include "geometry/error.hpp"
 
 int main(int argc, char** argv) {
+  // Under mpirun every rank runs main; without MPI (or without mpirun) there is one rank.
+  namespace mpi = daylit::cli::mpi;
+  const mpi::Session session(argc, argv);
   CLI::App app("daylit: exact daylight factors. Windows are clipped against the geometry in exact\n"
                "arithmetic and the sky is integrated over what stays visible in closed form.");
   app.require_subcommand(1);
@@ -30,27 +35,37 @@ int main(int argc, char** argv) {
   // Exit codes, a contract for scripts (README, "Exit codes"): 0 success (and --help), 1 input
   // that cannot be used (a file, a line, a value in it), 2 a command line that cannot be parsed
   // (unknown or missing option, a value an option refuses), 3 an internal error.
+  // The command line is the same on every rank, so is its verdict: rank 0 alone says it.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    app.exit(e);                                      // prints "error: ..." and the usage hint
+    if (e.get_exit_code() == 0) return mpi::root() ? app.exit(e) : 0;  // --help, --version
+    if (mpi::root()) app.exit(e);                                        // prints "error: ..." and the usage hint
     return 2;
   }
+  // df and illuminance shard their sensors over the ranks (cli/mpi_shards.hpp); the other commands
+  // run on rank 0 alone while the others wait (annual: see annual_command.cpp).
+  int code = 0;
+  std::string message;
   try {
-    if (app.got_subcommand("df")) return run_df();
-    if (app.got_subcommand("illuminance")) return run_illuminance();
-    if (app.got_subcommand("eval")) return run_eval();
-    if (app.got_subcommand("bench")) return run_bench();
-    if (app.got_subcommand("sun")) return run_sun();
-    if (app.got_subcommand("grid")) return run_grid();
-    if (app.got_subcommand("annual")) return run_annual();
+    if (app.got_subcommand("df")) code = run_df();
+    else if (app.got_subcommand("illuminance")) code = run_illuminance();
+    else if (!mpi::root()) code = 0;
+    else if (app.got_subcommand("eval")) code = run_eval();
+    else if (app.got_subcommand("bench")) code = run_bench();
+    else if (app.got_subcommand("sun")) code = run_sun();
+    else if (app.got_subcommand("grid")) code = run_grid();
+    else if (app.got_subcommand("annual")) code = run_annual();
+  } catch (const mpi::RankFailure& e) {
+    return mpi::report(e);  // the ranks have agreed on it already
   } catch (const daylit::Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return 1;
+    code = 1;
+    message = std::string("error: ") + e.what();
   } catch (const std::exception& e) {
-    std::cerr << "error: internal: " << e.what() << '\n';
-    return 3;
+    code = 3;
+    message = std::string("error: internal: ") + e.what();
   }
-  return 0;
+  // Every rank ends here once: a failure on one (rank 0 writing the outputs, a sensor of another's
+  // block) becomes every rank's exit code, and rank 0 prints the message.
+  return mpi::finish(code, message);
 }

@@ -14,7 +14,8 @@ Rooms, bottom up; a file of a room may include its own room and the rooms listed
 
 and, whatever the room: illumination/ includes no CGAL, GMP, MPFR or I/O header (kernels are pure
 functions of doubles), and nothing outside geometry/ includes CGAL or GMP (exact types stay in
-geometry/). Tests and fuzz targets may include any room. Exits 1 and names every file:line that
+geometry/), and MPI is cli/mpi_shards_mpi.cpp's alone (the libraries, and the default build, know nothing
+of it). Tests and fuzz targets may include any room. Exits 1 and names every file:line that
 breaks a rule; 0 with a one-line summary otherwise.
 
 Usage: scripts/check_layering.py [repository root]
@@ -41,6 +42,9 @@ ILLUMINATION_GEOMETRY = {"geometry/vec3.hpp", "geometry/polygon.hpp", "geometry/
 EXACT = re.compile(r"^(CGAL/|gmp|gmpxx|mpfr|boost/multiprecision)")
 # I/O in a kernel: streams, files, C stdio, JSON, images.
 IO = re.compile(r"^(iostream|fstream|sstream|istream|ostream|cstdio|stdio\.h|filesystem|nlohmann/|OpenImageIO/|fmt/)")
+# MPI: the one file that distributes sensors over ranks (cli/mpi_shards.hpp), built with DAYLIT_MPI.
+MPI = re.compile(r"^(mpi\.h|mpi/|mpi\.hpp$|boost/mpi)")
+MPI_FILE = "cli/mpi_shards_mpi.cpp"
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
@@ -68,6 +72,8 @@ def main() -> int:
                                         f"headers ({', '.join(sorted(ILLUMINATION_GEOMETRY))})")
                 if not quoted and EXACT.match(header) and room != "geometry":
                     problems.append(f"{where}: {room}/ includes <{header}>; exact arithmetic stays in geometry/")
+                if not quoted and MPI.match(header) and rel.as_posix() != MPI_FILE:
+                    problems.append(f"{where}: includes <{header}>; MPI stays in {MPI_FILE}")
                 if not quoted and room == "illumination" and IO.match(header):
                     problems.append(f"{where}: illumination/ includes <{header}>; kernels do no I/O")
     for p in problems:

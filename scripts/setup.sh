@@ -13,6 +13,7 @@ packages=(
   catch2                               # tests (v2)
   time                                 # tests: peak memory of runs over millions of lines
   python3                              # tests: the layering check, summary checks in CLI tests
+  libopenmpi-dev openmpi-bin           # optional: -DDAYLIT_MPI=ON, sensors sharded over MPI ranks (CI tests it)
   clang-14 libclang-rt-14-dev llvm-14  # CI: libFuzzer targets (fuzz/), its runtime, llvm-symbolizer
 )
 sudo=""
