@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "geometry/error.hpp"
+#include "sky/adaptive_quadrature.hpp"
 #include "sky/cie_sky.hpp"
 #include "sky/sky_quadrature.hpp"
 
@@ -190,12 +191,81 @@ PerezSky::PerezSky(const PerezCondition& condition, const Vec3& sun, PerezClamps
     problem("the luminance is negative in part of the sky", "negative luminance in part of the sky set to 0 (gendaymtx)");
   zenith_value_ = luminance_function({0, 0, 1});
   if (!(zenith_value_ > 0)) throw Error("the Perez sky's zenith luminance is 0 for this hour (after the clamps)");
+  // Where Radiance's floor at 0 acts, the luminance is no product of a gradation and an
+  // indicatrix: cubature over the hemisphere. Elsewhere nested 1-D integrals in the sun's frame.
   horizontal_integral_ =
-      sky_irradiance_quadrature([this](const Vec3& u) { return luminance_function(u); }, sun_, sky_hemisphere(),
-                                {0, 0, 1}, 1e-12)
-          .value;
+      negative ? sky_irradiance_quadrature([this](const Vec3& u) { return luminance_function(u); }, sun_,
+                                           sky_hemisphere(), {0, 0, 1}, 1e-12)
+                     .value
+               : sun_frame_normalisation();
   if (!(horizontal_integral_ > 0) || !std::isfinite(horizontal_integral_))
     throw Error("the Perez sky's horizontal integral is not positive for this hour");
+}
+
+// N = ∫_H G(cos θ) cos θ f(γ) dσ with G the gradation and f(γ) = 1 + c e^{dγ} + e cos²γ the
+// indicatrix, written about the sun: u = cos γ s + sin γ (cos ψ e₁ + sin ψ e₂), e₁ in the sun's
+// vertical plane, so that cos θ = cos γ sin α + sin γ cos ψ cos α (α the sky's sun altitude) and
+//     N = ∫₀^π f(γ) sin γ I(γ) dγ,   I(γ) = 2 ∫_{0}^{ψ₀(γ)} G(cos θ) cos θ dψ,
+// ψ₀ where the circle of radius γ about the sun meets the horizon (cos θ = 0). The indicatrix
+// (the circumsolar kink at γ = 0 included) is smooth in γ; I(γ) is smooth except where a circle
+// touches the horizon (γ = α, γ = π − α) or, under Radiance's clamps, the circle cos θ = 0.01
+// where the gradation is held: breakpoints there, and at ψ where cos θ = 0.01. The outer integral
+// and the inner one by adaptive Gauss–Kronrod (GSL QAGP) to 1e-12 relative; a roundoff status from
+// GSL (the tolerance beyond what double gives) is taken as met, any other falls back to the
+// hemisphere's cubature.
+double PerezSky::sun_frame_normalisation() const {
+  const PerezCondition& p = condition_;
+  const double sin_a = std::clamp(sun_.z, -1.0, 1.0), cos_a = std::sqrt(std::max(0.0, 1 - sin_a * sin_a));
+  const double alpha = std::asin(sin_a);
+  const double floor_t = clamps_ == PerezClamps::radiance ? kMinCosRadiance : 0.0;
+  const auto gradation = [&](double t) {
+    const double c = std::max(t, floor_t);
+    return c > 0 ? 1 + p.a * std::exp(p.b / c) : (p.b < 0 ? 1.0 : 1 + p.a);  // the limit t → 0⁺ for b ≤ 0
+  };
+  gsl_set_error_handler_off();  // errors come back as status codes, never abort()
+  Qagp outer, inner;
+  int status = 0;
+  const auto circle = [&](double gamma) {
+    const double cg = std::cos(gamma), sg = std::sin(gamma);
+    const auto t_at = [&](double psi) { return cg * sin_a + sg * std::cos(psi) * cos_a; };
+    const auto psi_where = [&](double t) {  // cos ψ = (t − cos γ sin α)/(sin γ cos α), clamped to [0, π]
+      if (!(sg * cos_a > 0)) return t_at(0) > t ? pi : 0.0;
+      return std::acos(std::clamp((t - cg * sin_a) / (sg * cos_a), -1.0, 1.0));
+    };
+    const double psi0 = psi_where(0);
+    if (!(psi0 > 0)) return 0.0;
+    std::vector<double> points{0};
+    const double psi1 = floor_t > 0 ? psi_where(floor_t) : 0;
+    if (psi1 > 0 && psi1 < psi0) points.push_back(psi1);
+    points.push_back(psi0);
+    auto f = [&](double psi) {
+      const double t = std::max(t_at(psi), 0.0);
+      return gradation(t) * t;
+    };
+    const auto [v, e] = inner.integrate(f, points, 1e-12, 0);
+    (void)e;
+    if (inner.status() && inner.status() != GSL_EROUND) status = inner.status();
+    return 2 * v;
+  };
+  std::vector<double> cuts{alpha, pi - alpha};
+  if (floor_t > 0) cuts.insert(cuts.end(), {alpha - std::asin(floor_t), pi - alpha - std::asin(floor_t)});
+  std::vector<double> points{0};
+  std::sort(cuts.begin(), cuts.end());
+  for (double g : cuts)
+    if (g > points.back() && g < pi) points.push_back(g);
+  points.push_back(pi);
+  auto outer_f = [&](double gamma) {
+    const double cg = std::cos(gamma);
+    return (1 + p.c * std::exp(p.d * gamma) + p.e * cg * cg) * std::sin(gamma) * circle(gamma);
+  };
+  const auto [value, error] = outer.integrate(outer_f, points, 1e-12, 0);
+  (void)error;
+  if (outer.status() && outer.status() != GSL_EROUND) status = outer.status();
+  if (status != 0)  // the adaptive rule could not reach its tolerance: the hemisphere's cubature
+    return sky_irradiance_quadrature([this](const Vec3& u) { return luminance_function(u); }, sun_, sky_hemisphere(),
+                                     {0, 0, 1}, 1e-12)
+        .value;
+  return value;
 }
 
 double PerezSky::luminance_function(const Vec3& u) const noexcept {

@@ -183,7 +183,7 @@ TEST_CASE("the Perez sky's normalisation agrees with tensor Gauss-Legendre in lo
     const ld want = reference_normalisation(r, zenith, azimuth);
     CHECK(sky.horizontal_integral() == Approx(double(want)).epsilon(1e-12));
     // gendaylit's sum over 145 directions, for the record (the issue measured up to 2.8 %).
-    WARN("bin " << k.bin << ": cubature / Gauss-Legendre - 1 = " << double(sky.horizontal_integral() / want - 1)
+    WARN("bin " << k.bin << ": normalisation / Gauss-Legendre - 1 = " << double(sky.horizontal_integral() / want - 1)
                 << "; 145-point sum / exact = " << sky.radiance_145_point_integral() / sky.horizontal_integral());
     CHECK(std::abs(sky.radiance_145_point_integral() / sky.horizontal_integral() - 1) > 1e-4);
   }
