@@ -102,6 +102,7 @@ nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std
     reflected = {{"share_of_occupied_illuminance", g.result.reflected_share},
                  {"max_estimate_lux", worst},
                  {"max_estimate_relative", worst_relative_reflected},
+                 {"max_estimate_relative_over", "sensor-hours of at least 100 lx"},
                  {"estimate_is", "per sensor and hour: |fine - half-resolution direction grid| + |fine - mesh of elements "
                                  "twice as large|, with the hour's largest blinds factor; an estimate, not a bound"}};
   }

@@ -387,7 +387,9 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
         const double estimate = largest * reflected->estimate[i * hours + h];
         total += part;
         r.max_reflection_estimate_lux[i] = std::max(r.max_reflection_estimate_lux[i], estimate);
-        if (total > 0)
+        // Relative to the hour's illuminance where that is at least 100 lx (UDI's lowest band): at
+        // dawn a few lux carry estimates of their own size, which say nothing of the results.
+        if (total >= 100)
           r.max_reflection_estimate_relative[i] = std::max(r.max_reflection_estimate_relative[i], estimate / total);
         if (hour.occupied) occupied_reflected[i] += part;
       }

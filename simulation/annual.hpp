@@ -111,7 +111,8 @@ struct AnnualGridResult {
   VisibilityCounters counters;
   double coefficient_time_s = 0, hourly_time_s = 0;
   // With reflections (annual_reflections.hpp): per sensor the largest per-hour error estimate of
-  // the reflected part (lux, with blinds) and that over the hour's illuminance; the grid's
+  // the reflected part (lux, with blinds) and that over the hour's illuminance (hours of at least
+  // 100 lx); the grid's
   // reflected share of the occupied hours' illuminance (with blinds).
   bool reflections = false;
   std::vector<double> max_reflection_estimate_lux, max_reflection_estimate_relative;

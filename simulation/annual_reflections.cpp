@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <Eigen/Dense>
 
@@ -99,11 +100,15 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
         for (std::size_t i = 1; i + 1 < loop.size(); ++i)
           triangle_rule(loop[0], loop[i], loop[i + 1], rule, max_angle, 6, [&](const Vec3& u, double dsigma) {
             const double w = dsigma * dot(node.normal, u) * transmittance(u);
+            // The direction's altitude and azimuth once, for both grids.
+            const double alt = std::asin(std::clamp(u.z, 0.0, 1.0));
+            double az = std::atan2(u.y, u.x);
+            if (az < 0) az += 2 * kPi;
             std::size_t v[4];
             double f[4];
-            fine.interpolation(u, v, f);
+            fine.interpolation_at(alt, az, v, f);
             for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
-            coarse.interpolation(u, v, f);
+            coarse.interpolation_at(alt, az, v, f);
             for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
           });
     }
@@ -205,6 +210,10 @@ void DirectionGrid::interpolation(const Vec3& u, std::size_t vertex_out[4], doub
   const double alt = std::asin(std::clamp(u.z / norm(u), 0.0, 1.0));
   double az = std::atan2(u.y, u.x);
   if (az < 0) az += 2 * kPi;
+  interpolation_at(alt, az, vertex_out, weight_out);
+}
+
+void DirectionGrid::interpolation_at(double alt, double az, std::size_t vertex_out[4], double weight_out[4]) const noexcept {
   const double fi = alt / (kPi / 2) * rows, fj = az / (2 * kPi) * columns;
   const int i = std::clamp(int(std::floor(fi)), 0, rows - 1);
   const int j = std::clamp(int(std::floor(fj)), 0, columns - 1);
@@ -240,6 +249,7 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
                                std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
                                const std::vector<HourLight>& sky_hours, double ground_reflectance) {
   const auto t0 = std::chrono::steady_clock::now();
+  Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());  // Eigen's products: the run's threads
   const DirectionGrid fine;
   DirectionGrid coarse;
   coarse.rows = fine.rows / 2;

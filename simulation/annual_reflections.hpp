@@ -54,6 +54,8 @@ struct DirectionGrid {
   // The four vertices of the cell holding u (u_z ≥ 0 up to roundoff) and their bilinear weights
   // in (altitude, azimuth), summing to 1.
   void interpolation(const Vec3& u, std::size_t vertex_out[4], double weight_out[4]) const noexcept;
+  // The same from the altitude in [0, π/2] and the azimuth in [0, 2π) (radians).
+  void interpolation_at(double altitude, double azimuth, std::size_t vertex_out[4], double weight_out[4]) const noexcept;
 };
 
 // Every sensor's reflected illuminance per hour, blinds open, per channel.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <Eigen/Dense>
+#include <tbb/task_arena.h>
 
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
@@ -891,6 +892,8 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     for (const auto& [j, c] : rows[u]) a(index[j], Eigen::Index(i)) -= rho[i] * c;
   }
   rows.clear();
+  // Eigen's own threads (OpenMP, where built with it) as many as the run's (--threads).
+  Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());
   Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(a);
 
   std::size_t before = 0, sensors = 0;
