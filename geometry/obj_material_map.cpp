@@ -39,14 +39,19 @@ class MapReader {
           r.pattern = value[i].get<std::string>();
           r.role = ObjRole::aperture;
           r.where = {name_ + ": " + path, 0};
-          for (const auto& g : map.groups)
-            if (g.pattern == r.pattern) fail(path, printable(r.pattern) + " is also a key of \"groups\": give it once");
           map.groups.push_back(r);
         }
       } else {
         fail(key, "unknown key: the map has \"materials\", \"groups\" and \"aperture_groups\"");
       }
     }
+    // A pattern both in "groups" and in "aperture_groups" (or twice in the latter): two rules
+    // for the same surfaces.
+    for (std::size_t i = 0; i < map.groups.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (map.groups[i].pattern == map.groups[j].pattern)
+          throw Error(map.groups[i].where.str() + ": " + printable(map.groups[i].pattern) + " is also " +
+                      map.groups[j].where.str().substr(name_.size() + 2) + ": give it once");
     return map;
   }
 

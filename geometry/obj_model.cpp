@@ -106,6 +106,11 @@ bool looks_binary(std::string_view text) {
   return control >= 16 && control * 20 > std::ptrdiff_t(head.size());
 }
 
+std::string plural(const char* what) {
+  const std::string w = what;
+  return w == "vertex" ? "vertices" : w + "s";
+}
+
 double number(std::string_view word, const SourceLocation& where, const std::string& what) {
   return parse_real(Token{word, where.line}, where, what);
 }
@@ -203,8 +208,8 @@ class ObjReader {
     double c[3];
     for (std::size_t i = 1; i <= n; ++i) {
       const double x = number(s.words[i], where,
-                              i <= 3 ? std::string(kAxis[i - 1]) + " coordinate of vertex " + index
-                                     : "number " + std::to_string(i) + " of vertex " + index);
+                              i <= 3 ? "the " + std::string(kAxis[i - 1]) + " coordinate of vertex " + index
+                                     : "value " + std::to_string(i) + " of vertex " + index);
       if (i <= 3) c[i - 1] = divisor_ > 0 ? x / divisor_ : x * options_.metres_per_unit;
     }
     const Vec3 p = options_.up == ObjUpAxis::y ? Vec3{c[0], -c[2], c[1]} : Vec3{c[0], c[1], c[2]};
@@ -228,7 +233,7 @@ class ObjReader {
     const long resolved = i > 0 ? i - 1 : count + i;
     if (resolved < 0 || resolved >= count)
       throw input_error(where, std::string(what) + " index " + std::string(word) + " is out of range: " +
-                                   std::to_string(count) + " " + what + (count == 1 ? " is" : "s are") +
+                                   std::to_string(count) + " " + (count == 1 ? std::string(what) + " is" : plural(what) + " are") +
                                    " defined before this line");
     return resolved;
   }

@@ -24,10 +24,11 @@ double glass_transmittance(const GlassOptics& glass, double cos_incidence);
 // The transmissivity t (the same in every channel) whose glass of refractive index n transmits
 // `transmittance` at normal incidence: glass_transmittance({t, t, t}, n, 1) = transmittance, found
 // by bisection on t ∈ [0, 1], where T rises monotonically (to the last bit: 64 halvings, the result
-// within an ulp or two of the root). Radiance's documented closed form for n = 1.52 (and Honeybee's
-// glass modifiers, generic_exterior_window_vis_0.64 = 0.6975761815384331) agree with it to about
-// 1e-8. Returns nullopt when even t = 1 transmits less (about 0.916 for n = 1.52: the surfaces
-// reflect the rest).
+// within an ulp or two of the root). Radiance's closed form for n = 1.52, t = (√(0.8402528435 +
+// 0.0072522239 T²) − 0.9166530661)/(0.0036261119 T), which Honeybee's glass modifiers use
+// (generic_exterior_window_vis_0.64 = 0.6975761815384331), is an approximation of the same model:
+// it differs by 1.2e-8 at T = 0.64, 2.3e-9 at 0.88 and 1.3e-7 at 0.1. Returns nullopt when even
+// t = 1 transmits less (0.9183 for n = 1.52: the surfaces reflect the rest).
 std::optional<double> glass_transmissivity(double transmittance, double refractive_index = 1.52);
 
 // T(μ) ≈ Σ_k coefficients[k] μ^k on [0, 1], the lowest degree (at most 12) whose maximum error,
