@@ -112,6 +112,10 @@ std::string plural(const char* what) {
 }
 
 double number(std::string_view word, const SourceLocation& where, const std::string& what) {
+  // Exports from programs set to a European locale write "0,5".
+  if (word.find(',') != std::string_view::npos && word.find_first_not_of("+-.0123456789,eE") == std::string_view::npos)
+    throw input_error(where, "expected a number for " + what + ", found " + printable(word) +
+                                 " (a decimal comma: OBJ and .mtl numbers take a decimal point)");
   return parse_real(Token{word, where.line}, where, what);
 }
 

@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgeographiclib-dev                 # site placement: WGS84, UTM, local east-north-up frames
   catch2                               # tests (v2)
+  libtinyobjloader-dev                 # tests: an independent OBJ reader (its double build) to check daylit's against
   time                                 # tests: peak memory of runs over millions of lines
   python3                              # tests: the layering check, summary checks in CLI tests
   clang-14 libclang-rt-14-dev llvm-14  # CI: libFuzzer targets (fuzz/), its runtime, llvm-symbolizer

@@ -244,6 +244,7 @@ TEST_CASE("OBJ: bad files name the file and line") {
   CHECK_THROWS_WITH(obj("v 0 0 0\nv 1 0 x\n"), Contains("m.obj:2") && Contains("expected a number") && Contains("'x'"));
   CHECK_THROWS_WITH(obj("v 1.5x 0 0\n"), Contains("m.obj:1") && Contains("'1.5x'"));
   CHECK_THROWS_WITH(obj("v 0 0\n"), Contains("m.obj:1") && Contains("x y z"));
+  CHECK_THROWS_WITH(obj("v 0,5 0 0\n"), Contains("m.obj:1") && Contains("decimal comma"));
   CHECK_THROWS_WITH(obj("v 0 0 1e999\n"), Contains("m.obj:1") && Contains("out of range"));
   CHECK_THROWS_WITH(obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), Contains("m.obj:4") && Contains("vertex index 9 is out of range: 3 vertices are defined before this line"));
   CHECK_THROWS_WITH(obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n"), Contains("m.obj:4") && Contains("index -4 is out of range"));
