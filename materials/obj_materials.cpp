@@ -93,9 +93,12 @@ class ObjAssembler {
                                                                                     : needing->polygon.material) +
                                        " first): put the .mtl beside the .obj, or give those materials a role with all "
                                        "its values in --obj-materials");
+    // Not needed: each face's material is defined in a library that was read, or the map gives the
+    // face its role with all its values (or there are no faces).
     for (const auto& l : model_.missing_libraries)
       content_.notices.push_back(l.where.str() + ": mtllib " + printable(l.name) + " could not be read (" + l.path +
-                                 "); not needed: " + map_->path + " gives every face its role and values");
+                                 "); not needed: no face takes a value from it" +
+                                 (map_ ? " (" + map_->path + " gives the others' roles and values)" : std::string()));
   }
 
   void face(const ObjFace& f) {

@@ -304,8 +304,14 @@ TEST_CASE("OBJ: a missing .mtl is an error when a face needs it, a notice when t
                                           "Glass": {"role": "aperture", "transmittance": 0.6}}})");
   CHECK(s.apertures.size() == 1);
   CHECK(s.apertures[0].transmittance == 0.6);
-  CHECK(has_notice(s, "could not be read") );
+  CHECK(has_notice(s, "could not be read"));
   CHECK(has_notice(s, "not needed"));
+  // Every material found in another library, no map; and no face at all (fuzz_obj_reader found
+  // the notice reaching for the absent map: regression-missing-library-no-map).
+  const Scene other = scene_of(obj("mtllib gone.mtl here.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Wall\nf 1 2 3\n",
+                                   {{"here.mtl", "newmtl Wall\nKd 0.3 0.3 0.3\n"}}));
+  CHECK(has_notice(other, "m.obj:1: mtllib 'gone.mtl' could not be read (gone.mtl); not needed: no face takes a value from it"));
+  CHECK(has_notice(scene_of(obj("mtllib gone.mtl\n")), "not needed"));
 }
 
 TEST_CASE("OBJ: the map's roles, patterns and precedence") {
