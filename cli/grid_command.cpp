@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "geometry/error.hpp"
+#include "geometry/obj_model.hpp"
 #include "report/staged_output.hpp"
 #include "simulation/floor_grid.hpp"
 
@@ -22,6 +23,7 @@ struct GridOptions {
   FloorGridOptions grid;
   std::string out;
   bool quiet = false;
+  bool obj_options_given = false;
 };
 
 // One sensor per line, x y z dx dy dz, 17 significant digits (the positions round-trip).
@@ -37,7 +39,9 @@ void write_pts(const std::string& path, const SensorGrid& grid) {
 
 int run_grid(const GridOptions& opt) {
   if (opt.sources.model.empty() == opt.sources.rad_files.empty())
-    throw Error("give the floors with --model (an HBJSON model) or with --scene (.rad files), one of them");
+    throw Error("give the floors with --model (an HBJSON or OBJ model) or with --scene (.rad files), one of them");
+  if ((!opt.sources.obj_materials.empty() || opt.obj_options_given) && !is_obj_path(opt.sources.model))
+    throw Error("--obj-materials, --obj-scale and --obj-up apply to an OBJ model (a --model ending in .obj)");
   if (!std::filesystem::is_directory(opt.out)) throw Error(opt.out + ": output directory does not exist");
   std::vector<std::string> notices;
   const std::vector<SensorGrid> grids = floor_grids(opt.sources, opt.grid, notices);
@@ -60,9 +64,26 @@ std::function<int()> add_grid_command(CLI::App& app) {
       "Lays cell-centred sensors, facing up, on a square lattice over the floors of rooms: at --height above\n"
       "the floor (0.85 m: EN 17037's reference plane) and at least --offset from the floor's edges (0.5 m:\n"
       "BREEAM Hea 01's perimeter band), every --spacing (0.5 m). Floors come from an HBJSON model (one grid\n"
-      "per room, named by the room, from its faces of type Floor) or from .rad files (one grid per floor\n"
-      "polygon: those with a --floor-modifier, else every horizontal polygon facing up). Writes DIR/<grid>.pts.");
-  cmd->add_option("--model", opt->sources.model, "HBJSON model whose rooms' floors get grids")->check(CLI::ExistingFile);
+      "per room, named by the room, from its faces of type Floor), from an OBJ model (the faces a rule of\n"
+      "--obj-materials marks \"floor\": true, else every horizontal face facing up; one grid per group), or\n"
+      "from .rad files (one grid per floor polygon: those with a --floor-modifier, else every horizontal\n"
+      "polygon facing up). Writes DIR/<grid>.pts.");
+  cmd->add_option("--model", opt->sources.model, "HBJSON or OBJ (.obj) model whose floors get grids")->check(CLI::ExistingFile);
+  cmd->add_option("--obj-materials", opt->sources.obj_materials,
+                  "With an OBJ --model: the map of df's --obj-materials; its rules with \"floor\": true mark the floors")
+      ->check(CLI::ExistingFile);
+  cmd->add_option_function<double>(
+         "--obj-scale", [o = opt.get()](double s) { o->sources.obj.metres_per_unit = s; o->obj_options_given = true; },
+         "With an OBJ --model: metres per unit (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option_function<std::string>(
+         "--obj-up",
+         [o = opt.get()](const std::string& up) {
+           o->sources.obj.up = up == "y" ? ObjUpAxis::y : ObjUpAxis::z;
+           o->obj_options_given = true;
+         },
+         "With an OBJ --model: its up axis, z (default) or y")
+      ->check(CLI::IsMember({"z", "y"}));
   cmd->add_option("--scene", opt->sources.rad_files, "Radiance files (.rad) holding the floor polygons")->check(CLI::ExistingFile);
   cmd->add_option("--floor-modifier", opt->sources.floor_modifiers,
                   "With --scene: the modifiers of the floor polygons (default: every horizontal polygon facing up)");

@@ -1,6 +1,7 @@
 #pragma once
 // The options that `daylit df` and `daylit illuminance` share for models users already have:
-// --model (an HBJSON file or a Honeybee Radiance folder) and --bsdf-transmittance.
+// --model (an HBJSON file, a Honeybee Radiance folder, or an OBJ model with --obj-materials,
+// --obj-scale and --obj-up) and --bsdf-transmittance.
 
 namespace CLI {
 class App;
@@ -12,7 +13,7 @@ struct ModelFiles;
 
 namespace daylit::cli {
 
-// Adds --model and --bsdf-transmittance to `command`, which must already have --grid, and requires
+// Adds --model, the OBJ options and --bsdf-transmittance to `command`, which must already have --grid, and requires
 // one of --grid and --model when parsing completes.
 void add_model_options(CLI::App& command, ModelFiles& files);
 

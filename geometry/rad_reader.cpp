@@ -100,7 +100,9 @@ std::string foreign_file_kind(std::string_view text) {
     start = end + 1;
   }
   if (vertex && face)
-    return "a Wavefront OBJ model ('v' and 'f' lines), not a Radiance scene: convert it with Radiance's obj2rad";
+    return "a Wavefront OBJ model ('v' and 'f' lines), not a Radiance scene: give it with --model (a name ending "
+           "in .obj; its .mtl is read, --obj-materials maps materials and groups to openings and occluders, "
+           "--obj-scale and --obj-up give its units and up axis)";
   // Mostly control bytes (not white space): a binary file. A few stray bytes in a text file are
   // left to the parser, which names their line.
   const auto control = std::count_if(head.begin(), head.end(), [](char c) {

@@ -23,6 +23,18 @@ double max_slope(const std::vector<double>& c) {
   return slope;
 }
 
+std::optional<double> glass_transmissivity(double transmittance, double refractive_index) {
+  const auto at = [&](double t) { return glass_transmittance({{t, t, t}, refractive_index}, 1.0); };
+  if (!(transmittance >= 0) || transmittance > at(1.0)) return std::nullopt;
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 64 && lo < hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (at(mid) < transmittance ? lo : hi) = mid;
+  }
+  return std::abs(at(lo) - transmittance) <= std::abs(at(hi) - transmittance) ? lo : hi;
+}
+
 namespace {
 
 // Least-squares coefficients of Chebyshev polynomials T_j(2μ − 1), j ≤ degree, on the samples

@@ -97,8 +97,10 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       } else if (type == "trans") {
         const auto& a = material->reals;
         const double t = (1 - a[3]) * a[5] * radiance_luminance(a[0], a[1], a[2]);
+        // A transmitted specularity of 1 leaves no diffuse part to treat (OBJ apertures of constant
+        // transmittance are such trans: materials/obj_materials.hpp).
         describe_once(*material, "trans '" + material->name + "': transmittance " + format_fraction(t) +
-                                     ", its diffuse part treated as clear");
+                                     (a[6] < 1 ? ", its diffuse part treated as clear" : ""));
         scene.apertures.push_back({poly, t});
       } else {
         opaque_in_apertures.add(poly);

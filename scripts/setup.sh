@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgeographiclib-dev                 # site placement: WGS84, UTM, local east-north-up frames
   catch2                               # tests (v2)
+  libtinyobjloader-dev                 # tests: an independent OBJ reader (its double build) to check daylit's against
   time                                 # tests: peak memory of runs over millions of lines
   python3                              # tests: the layering check, summary checks in CLI tests
   libopenmpi-dev openmpi-bin           # optional: -DDAYLIT_MPI=ON, sensors sharded over MPI ranks (CI tests it)

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "geometry/error.hpp"
 #include "geometry/honeybee_model.hpp"
+#include "geometry/obj_material_map.hpp"
+#include "geometry/obj_model.hpp"
 #include "geometry/rad_reader.hpp"
 
 namespace daylit {
@@ -87,10 +90,62 @@ std::vector<Sensor> floor_grid(const std::vector<FloorOutline>& floors, const Fl
   return sensors;
 }
 
+namespace {
+
+// Facing up within 1°: cos 1° = 0.99985.
+bool faces_up(const std::vector<Vec3>& v) {
+  const Vec3 n = newell_normal(v);
+  return n.z >= 0.99985 * norm(n);
+}
+
+// An OBJ model's floors: the faces a rule of the map marks "floor": true (a group rule before a
+// material rule, as for roles), else, when no rule marks any, every horizontal face facing up,
+// said in a notice (OBJ faces face whichever way their vertices turn: a room drawn as a closed
+// solid has its floor facing down). One grid per group (else object) name.
+std::vector<std::pair<std::string, std::vector<FloorOutline>>> obj_floors(const FloorSources& sources,
+                                                                         std::vector<std::string>& notices) {
+  const ObjModel model = read_obj_model(sources.model, sources.obj);
+  std::optional<ObjMaterialMap> map;
+  if (!sources.obj_materials.empty()) map = read_obj_material_map(sources.obj_materials);
+  bool marked = false;
+  if (map)
+    for (const auto* rules : {&map->materials, &map->groups})
+      for (const auto& r : *rules) marked |= r.floor;
+  std::vector<std::pair<std::string, std::vector<FloorOutline>>> named;
+  for (const ObjFace& f : model.faces) {
+    bool floor;
+    if (marked) {
+      std::vector<std::string> names = f.groups;
+      if (!f.object.empty()) names.push_back(f.object);
+      const ObjSurfaceRule* r = match_rule(map->groups, names);
+      if (!r && !f.polygon.material.empty()) r = match_rule(map->materials, {f.polygon.material});
+      floor = r && r->floor;
+    } else {
+      floor = faces_up(f.polygon.vertices);
+    }
+    if (!floor) continue;
+    const std::string name = f.groups.front() != "default" ? f.groups.front() : !f.object.empty() ? f.object : f.polygon.name;
+    if (named.empty() || named.back().first != name) named.push_back({name, {}});
+    named.back().second.push_back({{f.polygon.vertices}});
+  }
+  if (named.empty())
+    throw Error(sources.model + (marked ? ": no face has a rule with \"floor\": true in " + sources.obj_materials
+                                        : ": no face is horizontal and faces up; mark the floors with \"floor\": true "
+                                          "in --obj-materials"));
+  if (!marked)
+    notices.push_back(sources.model + ": no rule of an --obj-materials map marks floors (\"floor\": true): took every "
+                                      "horizontal face facing up");
+  return named;
+}
+
+}  // namespace
+
 std::vector<SensorGrid> floor_grids(const FloorSources& sources, const FloorGridOptions& options,
                                     std::vector<std::string>& notices) {
   std::vector<std::pair<std::string, std::vector<FloorOutline>>> named;  // in the model's order
-  if (!sources.model.empty()) {
+  if (!sources.model.empty() && is_obj_path(sources.model)) {
+    named = obj_floors(sources, notices);
+  } else if (!sources.model.empty()) {
     const HoneybeeModel model = read_honeybee_model(sources.model);
     for (const auto& f : model.floors) {
       if (named.empty() || named.back().first != f.room) named.push_back({f.room, {}});
@@ -108,9 +163,7 @@ std::vector<SensorGrid> floor_grids(const FloorSources& sources, const FloorGrid
         floor = std::find(sources.floor_modifiers.begin(), sources.floor_modifiers.end(), p.material) !=
                 sources.floor_modifiers.end();
       } else {
-        // Facing up within 1°: cos 1° = 0.99985.
-        const Vec3 n = newell_normal(p.vertices);
-        floor = n.z >= 0.99985 * norm(n);
+        floor = faces_up(p.vertices);
       }
       if (floor) named.push_back({p.name, {FloorOutline{{p.vertices}}}});
     }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/obj_model.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "geometry/vec3.hpp"
 
@@ -35,11 +36,15 @@ struct FloorOutline {
 std::vector<Sensor> floor_grid(const std::vector<FloorOutline>& floors, const FloorGridOptions& options);
 
 // Where floors come from: an HBJSON model (one grid per room, named by the room's identifier, from
-// its faces of type Floor) or .rad files (one grid per floor polygon, named by the polygon: those
-// whose modifier is one of `floor_modifiers`, else every horizontal polygon facing up, as a
-// Radiance floor faces into its room). Grids with no sensor are left out, said in `notices`.
+// its faces of type Floor), an OBJ model (a `model` path ending in .obj, read with `obj`: the faces
+// that a rule of the map `obj_materials` marks "floor": true, else every horizontal face facing up;
+// one grid per group, else object, name), or .rad files (one grid per floor polygon, named by the
+// polygon: those whose modifier is one of `floor_modifiers`, else every horizontal polygon facing
+// up, as a Radiance floor faces into its room). Grids with no sensor are left out, said in `notices`.
 struct FloorSources {
   std::string model;
+  ObjOptions obj;
+  std::string obj_materials;
   std::vector<std::string> rad_files;
   std::vector<std::string> floor_modifiers;
 };

@@ -1,6 +1,8 @@
 #include "simulation/model_inputs.hpp"
 
 #include "geometry/honeybee_model.hpp"
+#include "geometry/obj_material_map.hpp"
+#include "materials/obj_materials.hpp"
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
 
@@ -24,9 +26,20 @@ bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
 ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optional<SunBeam>& sun) {
   if (!files.context.empty() && files.site.empty())
     throw Error("--context needs --site: the site places the footprints' longitudes and latitudes in the model");
+  const bool obj = !files.model.empty() && is_obj_path(files.model);
+  if (!files.obj_materials.empty() && !obj)
+    throw Error("--obj-materials " + files.obj_materials + " applies to an OBJ model (--model ending in .obj)");
   ModelInputs in;
   RadContent content;
-  if (!files.model.empty()) {
+  if (obj) {
+    const ObjModel model = read_obj_model(files.model, files.obj);
+    if (files.obj_materials.empty()) {
+      content = obj_rad_content(model);
+    } else {
+      const ObjMaterialMap map = read_obj_material_map(files.obj_materials);
+      content = obj_rad_content(model, &map);
+    }
+  } else if (!files.model.empty()) {
     HoneybeeModel model = read_honeybee_model(files.model);
     content = std::move(model.content);
     if (files.grid_files.empty()) in.grids = std::move(model.grids);
@@ -35,13 +48,19 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   for (const auto& f : files.scene_files) read_rad_file(f, false, content);
   for (const auto& f : files.aperture_files) read_rad_file(f, true, content);
   in.scene = assemble_scene(content, SceneOptions{files.bsdf_transmittance});
+  if (in.scene.apertures.empty() && obj)
+    throw Error(files.model + ": no face is an aperture: give the windows' materials or groups the role aperture or "
+                "glass in --obj-materials (or list their groups in its aperture_groups), or make their .mtl materials "
+                "transparent (d < 1); --apertures files add openings too");
   if (in.scene.apertures.empty())
     throw Error("no apertures: give sky openings with --apertures, glass polygons in the scene, or a --model with "
                 "apertures");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
   if (in.grids.empty())
     throw Error(files.model.empty() ? "no sensor grids: give --grid (or --model with sensor grids)"
-                                    : files.model + ": the model has no sensor grids: give --grid");
+                : obj ? files.model + ": an OBJ model carries no sensor grids: give --grid (daylit grid --model " +
+                            files.model + " lays them on its floors)"
+                      : files.model + ": the model has no sensor grids: give --grid");
   for (const auto& grid : in.grids)
     if (faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/obj_model.hpp"
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
@@ -19,8 +20,12 @@ namespace daylit {
 struct ModelFiles {
   std::vector<std::string> scene_files, aperture_files, grid_files;
   // An HBJSON file or a Honeybee Radiance folder (geometry/honeybee_model.hpp): its scene, its
-  // apertures and, unless grid_files are given, its sensor grids. The .rad files are added to it.
+  // apertures and, unless grid_files are given, its sensor grids; or a Wavefront OBJ model (a path
+  // ending in .obj: geometry/obj_model.hpp), read with `obj` and the map `obj_materials` (optional:
+  // geometry/obj_material_map.hpp), which has no grids. The .rad files are added to it.
   std::string model;
+  ObjOptions obj;
+  std::string obj_materials;
   std::string site, context;
   double context_min_angle_deg = kDefaultContextMinAngularSizeDeg;
   std::optional<double> bsdf_transmittance;  // for BSDF apertures (materials/scene_materials.hpp)

@@ -158,7 +158,7 @@ TEST_CASE("quoted words run to the matching quote, white space and '#' included,
 TEST_CASE("a file that is not a scene description is named for what it is") {
   CHECK_THROWS_WITH(read("#?RADIANCE\noconv scene.rad\nFORMAT=Radiance_octree\n\n"), Contains("scene.rad:1") && Contains("octree"));
   CHECK_THROWS_WITH(read("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\n"), Contains("picture"));
-  CHECK_THROWS_WITH(read("# exported\nmtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), Contains("Wavefront OBJ") && Contains("obj2rad"));
+  CHECK_THROWS_WITH(read("# exported\nmtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), Contains("Wavefront OBJ") && Contains("give it with --model"));
   std::string binary(256, '\0');
   for (std::size_t i = 0; i < binary.size(); ++i) binary[i] = char((i * 37) % 32);
   CHECK_THROWS_WITH(read(binary), Contains("scene.rad:1") && Contains("binary"));
