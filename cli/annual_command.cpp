@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -62,6 +63,7 @@ int run_annual(AnnualCommandOptions opt) {
                             : opt.geometry == "rational" ? GeometryMode::rational
                                                          : GeometryMode::exact;
   opt.annual.clamps = parse_perez_clamps(opt.perez_clamps);
+  if (!mpi::root()) opt.quiet = true;  // under MPI, rank 0 alone speaks (and writes)
   const WeatherFile weather = read_weather_file(opt.weather);
   std::optional<Site> site;
   std::string site_source = "--site";
@@ -76,13 +78,8 @@ int run_annual(AnnualCommandOptions opt) {
   ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
-  // Under mpirun, annual runs on rank 0 alone (main.cpp): the LM-83 blinds rule needs, in every
-  // hour, the direct sun of all of a grid's sensors before the hourly pass, and annual_grid does
-  // both passes inside one call, so its sensors cannot be split without a library hook (README).
-  if (mpi::several() && !opt.quiet)
-    std::cerr << fmt::format("notice: annual is not sharded over MPI ranks: rank 0 computes every sensor, the other {} "
-                             "rank{} wait\n",
-                             mpi::ranks() - 1, mpi::ranks() > 2 ? "s" : "");
+  // Under mpirun every rank computes the whole AnnualSky (the Perez sky of every hour: a few
+  // seconds of CPU a year), since every sensor's hourly pass needs every hour.
   const auto t_sky = std::chrono::steady_clock::now();
   const AnnualSky sky = annual_sky(weather, *site, opt.annual);
   const double sky_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_sky).count();
@@ -110,6 +107,12 @@ int run_annual(AnnualCommandOptions opt) {
         std::cerr << "notice: " << o->get_name()
                   << " is not used by annual runs: the reflected part is computed at --element-size, its estimate "
                      "against a mesh twice as coarse\n";
+  // This rank's block of every grid's sensors (cli/mpi_shards.hpp; with one rank, the whole grid).
+  std::vector<SensorGrid> blocks;
+  for (const auto& g : model.grids) blocks.push_back(mpi::sub_grid(g, mpi::block(g.sensors.size())));
+  const std::vector<std::string> hosts = mpi::hosts();
+  const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
+  std::vector<mpi::ShardedGrid> shards;
   std::optional<ReflectionOperator> fine_op, coarse_op;
   std::map<std::string, SurfaceReflectance> used_materials;
   double operator_time = 0;
@@ -120,32 +123,79 @@ int run_annual(AnnualCommandOptions opt) {
     ReflectionOptions ro = reflection_options(opt.reflections);
     ro.mode = mode;
     ro.on_progress = reflection_progress_bars(show_progress);
-    std::vector<const SensorGrid*> grid_ptrs;
+    // The mesh comes from every grid's sensors, so every rank builds it and solves the LU (a fixed
+    // cost per rank); the rows of W only for this rank's block of each grid.
+    std::vector<const SensorGrid*> grid_ptrs, block_ptrs;
     for (const auto& g : model.grids) grid_ptrs.push_back(&g);
-    fine_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, false);
-    coarse_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, true);
+    for (const auto& g : blocks) block_ptrs.push_back(&g);
+    fine_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, false, kReflectionMaxNodes,
+                                  &block_ptrs);
+    coarse_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, true, kReflectionMaxNodes,
+                                    &block_ptrs);
     operator_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
   }
   double reflected_hours_time = 0;
   std::vector<AnnualGridReport> grids;
+  // The blinds rule's counts of lit sensors, per hour and group, summed over the ranks' blocks:
+  // every rank closes the blinds the whole grid's sensors close (annual.hpp, BlindsCounts).
+  BlindsCounts whole_grid;
+  if (mpi::several())
+    whole_grid = [](std::vector<std::uint64_t>& lit, std::uint64_t& sensors) {
+      lit.push_back(sensors);
+      lit = mpi::sum_on_every_rank(lit);
+      sensors = lit.back();
+      lit.pop_back();
+    };
   for (std::size_t gi = 0; gi < model.grids.size(); ++gi) {
     const SensorGrid& grid = model.grids[gi];
+    const SensorGrid& block = blocks[gi];
+    const auto tg = std::chrono::steady_clock::now();
     std::optional<ReflectedHours> reflected;
     if (fine_op) {
       reflected = reflected_hours(model.scene, *fine_op, &*coarse_op, gi, groups.group_of_aperture, groups.names.size(), sky,
                                   opt.reflections.ground_reflectance);
       reflected_hours_time += reflected->time_s;
     }
-    ProgressBar bar("annual " + grid.name, grid.sensors.size(), show_progress);
+    ProgressBar bar("annual " + grid.name, block.sensors.size(), show_progress);
     AnnualGridReport g;
     g.grid = &grid;
-    g.result = annual_grid(engine, model.scene, grid, sky, opt.annual, [&](std::size_t done) { bar.update(done); },
-                           reflected ? &*reflected : nullptr);
+    g.result = annual_grid(engine, model.scene, block, sky, opt.annual, [&](std::size_t done) { bar.update(done); },
+                           reflected ? &*reflected : nullptr, whole_grid);
+    const auto tc = std::chrono::steady_clock::now();
+    shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(tc - tg).count()}});
+    if (mpi::several()) {
+      // Rank 0 gathers the blocks in grid order: per-sensor rows concatenate into the single
+      // process's arrays; integers are summed; reflected_share is recomputed from the gathered
+      // per-sensor sums, in sensor order, as one process sums them. blinds_closed is the same on
+      // every rank (from the summed counts).
+      AnnualGridResult& r = g.result;
+      const std::size_t n = grid.sensors.size();
+      r.illuminance = mpi::gather(r.illuminance, n, r.hours);
+      r.direct_sun = mpi::gather(r.direct_sun, n, r.hours);
+      r.max_bound_lux = mpi::gather(r.max_bound_lux, n);
+      r.max_bound_relative = mpi::gather(r.max_bound_relative, n);
+      r.occupied_lux = mpi::gather(r.occupied_lux, n);
+      r.occupied_reflected_lux = mpi::gather(r.occupied_reflected_lux, n);
+      if (r.reflections) {
+        r.max_reflection_estimate_lux = mpi::gather(r.max_reflection_estimate_lux, n);
+        r.max_reflection_estimate_relative = mpi::gather(r.max_reflection_estimate_relative, n);
+      }
+      r.counters = mpi::sum(r.counters);
+      r.adaptive_circumsolar = std::size_t(mpi::sum(std::uint64_t(r.adaptive_circumsolar)));
+      for (double e : mpi::gather_per_rank(r.max_moment_error)) r.max_moment_error = std::max(r.max_moment_error, e);
+      shards.back().time_s = mpi::gather_per_rank(shards.back().time_s.front());
+      // run_time_s.hourly: rank 0's hourly pass and its wait for the other ranks' blocks.
+      r.hourly_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
+      if (!mpi::root()) continue;  // the metrics and every output are rank 0's
+      r.sensors = n;
+      r.reflected_share = reflected_share(r.occupied_lux, r.occupied_reflected_lux);
+    }
     g.sensors = sensor_metrics(g.result.illuminance, g.result.direct_sun, g.result.sensors, g.result.hours, occupied,
                                daylight_hours);
     g.metrics = grid_metrics(g.result.illuminance, g.sensors, g.result.hours, occupied, daylight_hours);
     grids.push_back(std::move(g));
   }
+  if (!mpi::root()) return 0;
 
   StagedOutputs outputs;
   if (!opt.out.empty()) write_annual_csv(outputs.stage(opt.out), grids);
@@ -252,10 +302,15 @@ int run_annual(AnnualCommandOptions opt) {
                                          "blinds (lux), rows in grid order, columns in weather-file order"}};
   summary["threads"] = threads;
   if (mpi::several())
-    summary["mpi"] = {{"ranks", mpi::ranks()},
-                      {"sharded", "nothing: rank 0 computes every sensor and hour; the other ranks wait"},
-                      {"why", "the LM-83 blinds rule needs the direct sun of every sensor of a grid in each hour before "
-                              "the hourly pass, and annual_grid does both passes in one call"}};
+    summary["mpi"] = mpi::summary_json(
+        shards, hosts, rank_threads,
+        "every grid's sensors in blocks, one per rank: the daylight coefficients, the direct sun, the hourly pass and, "
+        "with --components all, the sensors' rows of the reflection operators and the reflected hours; the LM-83 blinds "
+        "rule from the lit sensors of the whole grid (counts summed over the ranks in every hour)",
+        "on every rank: reading the model and the weather, the Perez sky of every hour (AnnualSky), the visibility "
+        "engine and, with --components all, both operators' meshes, their nodes' views and transport and the dense LU "
+        "(a fixed cost per rank, the same on each: the mesh depends on every grid's sensors); on rank 0 alone: the "
+        "metrics and every output");
   summary["run_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!opt.summary.empty()) {
     std::ofstream f(outputs.stage(opt.summary));

@@ -43,19 +43,19 @@ int main(int argc, char** argv) {
     if (mpi::root()) app.exit(e);                                        // prints "error: ..." and the usage hint
     return 2;
   }
-  // df and illuminance shard their sensors over the ranks (cli/mpi_shards.hpp); the other commands
-  // run on rank 0 alone while the others wait (annual: see annual_command.cpp).
+  // df, illuminance and annual shard their sensors over the ranks (cli/mpi_shards.hpp); the other
+  // commands run on rank 0 alone while the others wait.
   int code = 0;
   std::string message;
   try {
     if (app.got_subcommand("df")) code = run_df();
     else if (app.got_subcommand("illuminance")) code = run_illuminance();
+    else if (app.got_subcommand("annual")) code = run_annual();
     else if (!mpi::root()) code = 0;
     else if (app.got_subcommand("eval")) code = run_eval();
     else if (app.got_subcommand("bench")) code = run_bench();
     else if (app.got_subcommand("sun")) code = run_sun();
     else if (app.got_subcommand("grid")) code = run_grid();
-    else if (app.got_subcommand("annual")) code = run_annual();
   } catch (const mpi::RankFailure& e) {
     return mpi::report(e);  // the ranks have agreed on it already
   } catch (const daylit::Error& e) {

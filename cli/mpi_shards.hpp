@@ -6,7 +6,9 @@
 // between queries), so computing the blocks apart and concatenating them in rank order gives the
 // single process's vectors bit for bit; whatever sums over sensors (grid statistics) is computed
 // on rank 0 from the gathered vector, never from per-rank partial sums. Counters are integers,
-// whose sums do not depend on their order.
+// whose sums do not depend on their order. The one coupling between sensors, annual's LM-83
+// blinds rule (how many of the grid's sensors are sunlit in each hour), is such a count:
+// sum_on_every_rank makes it the whole grid's on every rank before the hourly pass.
 //
 // Two implementations, chosen by CMake: mpi_shards_mpi.cpp (DAYLIT_MPI=ON; OpenMPI through
 // MPI::MPI_CXX) and mpi_shards_serial.cpp (the default build: one rank, every call the identity).
@@ -69,11 +71,18 @@ SensorGrid sub_grid(const SensorGrid& grid, SensorBlock block);
 // this rank's block(total) values.
 std::vector<double> gather(const std::vector<double>& local, std::size_t total);
 std::vector<Vec3> gather(const std::vector<Vec3>& local, std::size_t total);
+// The same for rows of `width` values per sensor (an annual grid's [sensor × hours] floats):
+// `local` holds this rank's block(total) rows; on rank 0 the total × width values. Throws
+// daylit::Error, on every rank alike, where total × width exceeds what one MPI call can count.
+std::vector<float> gather(const std::vector<float>& local, std::size_t total, std::size_t width);
 // One value per rank, on rank 0, in rank order; empty elsewhere.
 std::vector<double> gather_per_rank(double value);
 std::vector<std::uint64_t> gather_per_rank(std::uint64_t value);
 // Summed over the ranks, on rank 0; this rank's own elsewhere.
 std::uint64_t sum(std::uint64_t local);
+// Summed element by element over the ranks, on every rank (the vectors as long on every rank):
+// annual's blinds counts, which every rank's hourly pass needs.
+std::vector<std::uint64_t> sum_on_every_rank(const std::vector<std::uint64_t>& local);
 // Counters summed over the ranks, on rank 0 (integers: exact in any order); this rank's own elsewhere.
 VisibilityCounters sum(const VisibilityCounters& local);
 // The host (MPI_Get_processor_name) of every rank, on rank 0; empty elsewhere and with one rank.

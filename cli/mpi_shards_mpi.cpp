@@ -7,9 +7,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <thread>
 
 #include "cli/mpi_shards.hpp"
+#include "geometry/error.hpp"
 
 namespace daylit::cli::mpi {
 
@@ -57,8 +59,17 @@ void agree(int code, const std::string& message) {
   throw RankFailure(agreed, std::move(messages));
 }
 
-// Rank r's block of `total` values, `width` doubles each, concatenated in rank order on rank 0.
-std::vector<double> gather_blocks(const double* local, std::size_t local_count, std::size_t total, std::size_t width) {
+template <typename T> MPI_Datatype datatype();
+template <> MPI_Datatype datatype<double>() { return MPI_DOUBLE; }
+template <> MPI_Datatype datatype<float>() { return MPI_FLOAT; }
+
+// Rank r's block of `total` values, `width` of T each, concatenated in rank order on rank 0.
+template <typename T>
+std::vector<T> gather_blocks(const T* local, std::size_t local_count, std::size_t total, std::size_t width) {
+  // MPI counts in int; every rank has the same total, so every rank throws alike, before any exchange.
+  if (width > 0 && total > std::size_t(std::numeric_limits<int>::max()) / width)
+    throw Error("too many values (" + std::to_string(total) + " x " + std::to_string(width) +
+                ") to gather in one MPI call: split the grid");
   agree(0, "");
   std::vector<int> counts, offsets;
   if (root())
@@ -67,10 +78,10 @@ std::vector<double> gather_blocks(const double* local, std::size_t local_count, 
       counts.push_back(int(b.size() * width));
       offsets.push_back(int(b.begin * width));
     }
-  std::vector<double> all(root() ? total * width : 0);
+  std::vector<T> all(root() ? total * width : 0);
   MPI_Request request;
-  MPI_Igatherv(local, int(local_count * width), MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
-               MPI_COMM_WORLD, &request);
+  MPI_Igatherv(local, int(local_count * width), datatype<T>(), all.data(), counts.data(), offsets.data(), datatype<T>(),
+               0, MPI_COMM_WORLD, &request);
   wait(request);
   return all;
 }
@@ -120,6 +131,12 @@ std::vector<Vec3> gather(const std::vector<Vec3>& local, std::size_t total) {
   return out;
 }
 
+std::vector<float> gather(const std::vector<float>& local, std::size_t total, std::size_t width) {
+  if (world_size == 1) return local;
+  if (local.size() != block(total).size() * width) throw Error("mpi::gather: the rows do not fill this rank's block");
+  return gather_blocks(local.data(), block(total).size(), total, width);
+}
+
 std::vector<double> gather_per_rank(double value) {
   if (world_size == 1) return {value};
   return gather_blocks(&value, 1, std::size_t(world_size), 1);  // block(ranks, r) is rank r alone
@@ -140,6 +157,18 @@ std::uint64_t sum(std::uint64_t local) {
   std::uint64_t total = 0;
   for (std::uint64_t v : gather_per_rank(local)) total += v;
   return root() ? total : local;
+}
+
+std::vector<std::uint64_t> sum_on_every_rank(const std::vector<std::uint64_t>& local) {
+  if (world_size == 1) return local;
+  if (local.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw Error("too many values (" + std::to_string(local.size()) + ") to sum in one MPI call");
+  agree(0, "");
+  std::vector<std::uint64_t> total(local.size(), 0);
+  MPI_Request request;
+  MPI_Iallreduce(local.data(), total.data(), int(local.size()), MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD, &request);
+  wait(request);
+  return total;
 }
 
 VisibilityCounters sum(const VisibilityCounters& local) {

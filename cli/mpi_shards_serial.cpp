@@ -15,9 +15,11 @@ int ranks() { return 1; }
 
 std::vector<double> gather(const std::vector<double>& local, std::size_t) { return local; }
 std::vector<Vec3> gather(const std::vector<Vec3>& local, std::size_t) { return local; }
+std::vector<float> gather(const std::vector<float>& local, std::size_t, std::size_t) { return local; }
 std::vector<double> gather_per_rank(double value) { return {value}; }
 std::vector<std::uint64_t> gather_per_rank(std::uint64_t value) { return {value}; }
 std::uint64_t sum(std::uint64_t local) { return local; }
+std::vector<std::uint64_t> sum_on_every_rank(const std::vector<std::uint64_t>& local) { return local; }
 VisibilityCounters sum(const VisibilityCounters& local) { return local; }
 std::vector<std::string> hosts() { return {}; }
 

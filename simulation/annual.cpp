@@ -275,14 +275,23 @@ std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, st
   for (std::size_t g = 0; g < groups; ++g) {
     std::size_t lit = 0;
     for (std::size_t i = 0; i < sensors; ++i) lit += sun_by_group[i * groups + g] >= threshold_lux;
-    closed[g] = double(lit) > share * double(sensors);
+    closed[g] = blinds_closed(lit, sensors, share);
   }
   return closed;
 }
 
+double reflected_share(const std::vector<double>& occupied_lux, const std::vector<double>& occupied_reflected_lux) {
+  double all = 0, reflected_all = 0;
+  for (std::size_t i = 0; i < occupied_lux.size(); ++i) {
+    all += occupied_lux[i];
+    reflected_all += occupied_reflected_lux[i];
+  }
+  return all > 0 ? reflected_all / all : 0;
+}
+
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                              const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress,
-                             const ReflectedHours* reflected) {
+                             const ReflectedHours* reflected, const BlindsCounts& whole_grid) {
   const auto t0 = std::chrono::steady_clock::now();
   const WindowGroups groups = window_groups(scene);
   AnnualGridResult r;
@@ -308,18 +317,26 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
             float(direct_sun_lux(scene.apertures[std::size_t(a)], region, s.normal, hour.sun, hour.direct_normal_lux));
     }
   });
-  r.blinds_closed.assign(hours * ng, 0);
+  // The blinds rule (blinds_rule, by its counts, which whole_grid makes the whole grid's).
+  std::vector<std::uint64_t> lit(hours * ng, 0);
   r.direct_sun.assign(n * hours, 0.0f);
   for (std::size_t h = 0; h < hours; ++h) {
-    const std::vector<float> slice(sun.begin() + std::ptrdiff_t(h * n * ng), sun.begin() + std::ptrdiff_t((h + 1) * n * ng));
-    const auto closed = blinds_rule(slice, n, ng, options.blinds_threshold_lux, options.blinds_sensor_share);
-    std::copy(closed.begin(), closed.end(), r.blinds_closed.begin() + std::ptrdiff_t(h * ng));
+    const float* slice = sun.data() + h * n * ng;
     for (std::size_t i = 0; i < n; ++i) {
       float total = 0;
-      for (std::size_t g = 0; g < ng; ++g) total += slice[i * ng + g];
+      for (std::size_t g = 0; g < ng; ++g) {
+        total += slice[i * ng + g];
+        lit[h * ng + g] += slice[i * ng + g] >= options.blinds_threshold_lux;
+      }
       r.direct_sun[i * hours + h] = total;
     }
   }
+  std::uint64_t sensors_total = n;
+  if (whole_grid) whole_grid(lit, sensors_total);
+  if (lit.size() != hours * ng) throw Error("the blinds counts do not match the grid's hours and window groups");
+  r.blinds_closed.assign(hours * ng, 0);
+  for (std::size_t k = 0; k < hours * ng; ++k)
+    r.blinds_closed[k] = blinds_closed(lit[k], sensors_total, options.blinds_sensor_share);
   // Pass 2: sky and sun per group with the blinds, per sensor.
   r.illuminance.assign(n * hours, 0.0f);
   r.max_bound_lux.assign(n, 0.0);
@@ -400,12 +417,9 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
     }
   });
   for (std::size_t a : adaptive_counts) r.adaptive_circumsolar += a;
-  double all = 0, reflected_all = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    all += occupied_total[i];
-    reflected_all += occupied_reflected[i];
-  }
-  r.reflected_share = all > 0 ? reflected_all / all : 0;
+  r.reflected_share = reflected_share(occupied_total, occupied_reflected);
+  r.occupied_lux = std::move(occupied_total);
+  r.occupied_reflected_lux = std::move(occupied_reflected);
   r.hourly_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   return r;
 }

@@ -21,6 +21,7 @@
 // blinds open.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -117,17 +118,31 @@ struct AnnualGridResult {
   bool reflections = false;
   std::vector<double> max_reflection_estimate_lux, max_reflection_estimate_relative;
   double reflected_share = 0;
+  // Per sensor, the occupied hours' illuminance (with blinds, lux·h) and its reflected part (0
+  // without reflections), summed in hour order: reflected_share is reflected_share() of them, so a
+  // caller that computed the sensors in blocks finds the whole grid's share from the gathered sums.
+  std::vector<double> occupied_lux, occupied_reflected_lux;
 };
+
+// Σ_i reflected_i / Σ_i total_i over the sensors in order (0 where the total is 0).
+double reflected_share(const std::vector<double>& occupied_lux, const std::vector<double>& occupied_reflected_lux);
+
+// The LM-83 rule counts, per hour and window group, the sensors that get at least the threshold
+// of direct sun through the group ([hours × groups]), out of `sensors`. A caller that passes
+// annual_grid one block of a grid (MPI ranks, cli/mpi_shards.hpp) turns the block's counts and
+// sensors into the whole grid's here (a sum over the blocks: integers, exact in any order), so
+// that every block's blinds are the whole grid's.
+using BlindsCounts = std::function<void(std::vector<std::uint64_t>& lit_per_hour_group, std::uint64_t& sensors)>;
 
 struct ReflectedHours;
 
 // `reflected`: the grid's reflected part per hour and window group (annual_reflections.hpp), added
 // to the sky and sun with each group's blinds factor; the light on surfaces lit outdoors enters by
 // every group, weighted by the groups' aperture areas (exact with one group). nullptr: sky + sun
-// direct only.
+// direct only. `whole_grid`: see BlindsCounts (empty: `grid` is the whole grid).
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                              const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress = {},
-                             const ReflectedHours* reflected = nullptr);
+                             const ReflectedHours* reflected = nullptr, const BlindsCounts& whole_grid = {});
 
 // One sensor's sky illuminance in one hour through the given coefficients (all groups, no blinds),
 // and the bound on its error: the path annual_grid takes, for tests.
@@ -166,8 +181,13 @@ double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, c
                       double direct_normal_lux);
 
 // The LM-83 rule for one hour: closed[g] when more than `share` of the sensors get ≥ threshold
-// lux from group g's direct sun alone. sun_by_group is [sensor × groups].
+// lux from group g's direct sun alone. sun_by_group is [sensor × groups]. (annual_grid counts
+// the lit sensors itself, for BlindsCounts, and compares as blinds_closed does.)
 std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, std::size_t sensors, std::size_t groups,
                                       double threshold_lux, double share);
+// The rule's comparison: more than `share` of `sensors` lit.
+inline bool blinds_closed(std::uint64_t lit, std::uint64_t sensors, double share) {
+  return double(lit) > share * double(sensors);
+}
 
 }  // namespace daylit

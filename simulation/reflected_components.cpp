@@ -832,7 +832,8 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
 
 ReflectionOperator reflection_operator(const Scene& scene, const std::vector<double>& reflectance,
                                        const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
-                                       const ReflectionOptions& options, bool coarse, std::size_t max_nodes) {
+                                       const ReflectionOptions& options, bool coarse, std::size_t max_nodes,
+                                       const std::vector<const SensorGrid*>* response_grids) {
   const double rho_max = check_inputs(scene, reflectance, options);
   if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
     std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
@@ -905,10 +906,13 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
   Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());
   Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(a);
 
+  if (response_grids != nullptr && response_grids->size() != grids.size())
+    throw Error("reflection_operator: the response grids are not as many as the grids");
+  const std::vector<const SensorGrid*>& responses = response_grids != nullptr ? *response_grids : grids;
   std::size_t before = 0, sensors = 0;
-  for (const SensorGrid* g : grids) sensors += g->sensors.size();
+  for (const SensorGrid* g : responses) sensors += g->sensors.size();
   const ProgressCallback progress = stage_progress(opt, "reflections at the sensors", "sensors", sensors);
-  for (const SensorGrid* grid : grids) {
+  for (const SensorGrid* grid : responses) {
     const std::size_t m = grid->sensors.size();
     Eigen::MatrixXd st = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(m));
     std::vector<double> ground(m * scene.apertures.size(), 0.0);

@@ -155,10 +155,17 @@ struct ReflectionOperator {
 // the asked size), or with `coarse` that mesh of twice the size itself, for the same error
 // estimate. Throws daylit::Error as reflected_components, and for a mesh of more than `max_nodes`
 // live nodes (the LU is dense: memory 8 n² bytes, time ~n³/3 operations).
+// `grids` set the mesh (its automatic element size, the surface sides light can reach a sensor
+// from); `response_grids` (as many, default `grids`) are the sensors whose rows of W and far
+// ground are found: a part of each grid (an MPI rank's block of its sensors) gives those rows of
+// the whole grid's, bit for bit, since each sensor's transport is its own and W's rows are
+// solved column by column.
+inline constexpr std::size_t kReflectionMaxNodes = 16000;
 ReflectionOperator reflection_operator(const Scene& scene, const std::vector<double>& reflectance,
                                        const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
                                        const ReflectionOptions& options, bool coarse = false,
-                                       std::size_t max_nodes = 16000);
+                                       std::size_t max_nodes = kReflectionMaxNodes,
+                                       const std::vector<const SensorGrid*>* response_grids = nullptr);
 
 // `reflectance`: per Scene::occluders entry, in [0, 1). `engine`: the sky component's (apertures
 // = scene apertures, occluders = opaque polygons). Throws daylit::Error for a reflectance outside

@@ -3,8 +3,8 @@
 # sharded over the ranks and gathered on rank 0, so every output file is byte for byte the single
 # process's, whatever N (2, and 3 for blocks of unequal size): df's sky component with gradients
 # and over two grids, df --components all on the room (reflections on rank 0), df --refine, more
-# ranks than sensors, illuminance with the sun (and with --components all), annual (on rank 0
-# alone) with its .npy. The summary counts the ranks, their sensors
+# ranks than sensors, illuminance with the sun (and with --components all), annual (sky + sun with
+# blinds that close, and with --components all) with its .npy. The summary counts the ranks, their sensors
 # add up to each grid's and the counters summed over them are the single process's. A failure
 # on one rank only (its own bad grid, by MPMD) fails every rank with that rank's message and no
 # output; bad input read alike by every rank is reported once.
@@ -130,19 +130,48 @@ sunlit=("${room[@]}" --components all --element-size 1.8 --sky cie-12 --sun-zeni
 mpi 2 illuminance "${sunlit[@]}" --out "$work/lux-all-2.csv" || fail "illuminance --components all, 2 ranks"
 same "illuminance --components all, 2 ranks" "$work/lux-all.csv" "$work/lux-all-2.csv"
 
-# ---- annual: on rank 0 alone (README), the same CSV and .npy; the summary says it.
-head -12 "$samples/office/grid.pts" > "$work/grid12.pts"
-year=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$work/grid12.pts" --quiet
-      --degree 16 --threads 1 --weather "$data/chicago-ohare-tmy3-jan1-3.epw")
-"$daylit" annual "${year[@]}" --out "$work/year.csv" --hourly "$work/year.npy" || fail "annual, one process"
-mpi 2 annual "${year[@]}" --out "$work/year-2.csv" --hourly "$work/year-2.npy" --summary "$work/year-2.json" || fail "annual, 2 ranks"
-same "annual, 2 ranks" "$work/year.csv" "$work/year-2.csv"
-same "annual --hourly, 2 ranks" "$work/year.npy" "$work/year-2.npy"
-python3 - "$work/year-2.json" <<'PY' || fail "annual summary"
+# ---- annual: sharded too (README). The room (80 sensors) over three January days: sky + sun,
+# whose LM-83 blinds close in some hours (the rule counts the whole grid's lit sensors, summed over
+# the ranks: a block's own count would close them in other hours), and with --components all
+# (coarse elements, to keep it short). CSV, .npy and the summary's results are the single
+# process's at 1, 2 and 3 ranks (3: blocks of 27, 27 and 26 sensors).
+year=("${room[@]}" --weather "$data/chicago-ohare-tmy3-jan1-3.epw")
+for case in sky all; do
+  args=("${year[@]}")
+  [ "$case" = all ] && args+=(--components all --element-size 1.8)
+  "$daylit" annual "${args[@]}" --out "$work/year-$case.csv" --hourly "$work/year-$case.npy" \
+    --summary "$work/year-$case.json" || fail "annual $case, one process"
+  for n in 1 2 3; do
+    mpi "$n" annual "${args[@]}" --out "$work/year-$case-$n.csv" --hourly "$work/year-$case-$n.npy" \
+      --summary "$work/year-$case-$n.json" || fail "annual $case, $n ranks"
+    same "annual $case, $n ranks" "$work/year-$case.csv" "$work/year-$case-$n.csv"
+    same "annual $case --hourly, $n ranks" "$work/year-$case.npy" "$work/year-$case-$n.npy"
+  done
+  python3 - "$case" "$work/year-$case.json" "$work/year-$case-1.json" "$work/year-$case-2.json" \
+    "$work/year-$case-3.json" <<'PY' || fail "annual $case summaries"
 import json, sys
-m = json.load(open(sys.argv[1]))["mpi"]
-assert m["ranks"] == 2 and m["sharded"].startswith("nothing"), m
+case = sys.argv[1]
+one, n1, n2, n3 = (json.load(open(p)) for p in sys.argv[2:])
+def results(s):  # the summary less its run times and the mpi object
+    if isinstance(s, dict):
+        return {k: results(v) for k, v in s.items() if k != "mpi" and not k.startswith("run_time")}
+    if isinstance(s, list):
+        return [results(v) for v in s]
+    return s
+assert "mpi" not in one and "mpi" not in n1, "one rank: the summary is the single process's"
+g = one["grids"][0]
+assert g["count"] == 80 and sum(b["hours_closed"] for b in g["blinds"]) > 0, ("the blinds never close", g["blinds"])
+assert isinstance(g["reflected"], dict) == (case == "all"), g["reflected"]
+for s, n in ((n1, 1), (n2, 2), (n3, 3)):
+    assert results(s) == results(one), [k for k in results(one) if results(one)[k] != results(s).get(k)]
+    if n == 1:
+        continue
+    m = s["mpi"]
+    assert m["ranks"] == n and len(m["per_rank"]) == n, m
+    assert m["grids"][0]["sensors_per_rank"] == [80 // n + (r < 80 % n) for r in range(n)], m["grids"][0]
+    assert "AnnualSky" in m["not_sharded"] and "blinds" in m["sharded"], m
 PY
+done
 
 # ---- Failures. Rank 1 alone reads a bad grid (MPMD: each rank its own command line), after rank
 # 0 has started computing: every rank exits 1, rank 0 prints rank 1's message, and no file is written.
