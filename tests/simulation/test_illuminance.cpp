@@ -37,7 +37,7 @@ Scene window_scene(bool glazed) {
 
 SensorGrid sensors() {
   SensorGrid g;
-  g.name = "g";
+  g.name.push_back('g');  // not = "g": GCC 12 warns falsely (-Wrestrict) on that here
   g.sensors = {{{0.6, 1.5, 0.85}, {0, 0, 1}}, {{1.7, 3.0, 0.85}, {0, 0, 1}}, {{1.0, 0.8, 1.2}, normalized(Vec3{0.2, -1, 0.5})}};
   return g;
 }
