@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
 #include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
@@ -349,7 +350,9 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--scene", f.scene_files, "Radiance scene files (.rad): occluders; glass polygons are apertures")
       ->check(CLI::ExistingFile);
   cmd->add_option("--apertures", f.aperture_files, "Radiance files whose polygons are sky openings")->check(CLI::ExistingFile);
-  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--grid", f.grid_files, "Sensor grids (.pts: x y z dx dy dz per line); default: the --model's grids")
+      ->check(CLI::ExistingFile);
+  add_model_options(*cmd, f);
   cmd->add_option("--weather", opt->weather, "EnergyPlus .epw or Radiance .wea weather file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--site", f.site, "Site JSON (as for `daylit df`); default: the weather file's location, +y true north")
       ->check(CLI::ExistingFile);

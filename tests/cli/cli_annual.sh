@@ -103,6 +103,17 @@ for t, hour in (("1986-01-01T10:30:00-06:00", 10), ("1986-01-02T12:30:00-06:00",
         assert abs(direct[i][hour] - sky_sun) <= 1e-5 * sky_sun + 1e-3, (t, i, direct[i][hour], sky_sun)
 PY
 
+# Models users already have (--model, as for df): a Honeybee model's own grids, and an OBJ of the
+# room whose results equal the room's .rad files to the last digit (the same polygons).
+"$daylit" annual --model "$data/honeybee/model_radiance_grid_views.hbjson" --weather "$epw" --degree 8 --quiet \
+  --out "$work/hb.csv" || fail "annual --model HBJSON"
+[ "$(wc -l < "$work/hb.csv")" -eq 401 ] || fail "annual --model HBJSON: rows"
+"$daylit" annual --model "$data/obj/room.obj" --obj-materials "$data/obj/room_map.json" --grid "$samples/room/grid.pts" \
+  --weather "$epw" --degree 16 --quiet --out "$work/obj.csv" || fail "annual --model OBJ"
+"$daylit" annual --scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts" \
+  --weather "$epw" --degree 16 --quiet --out "$work/rad.csv" || fail "annual, room .rad"
+cmp -s "$work/obj.csv" "$work/rad.csv" || fail "annual: the OBJ room differs from its .rad files"
+
 # Bad input: file:line, exit 1, no output.
 awk -F, 'NR == 15 { $15 = "lots" } { print }' OFS=, "$epw" > "$work/bad.epw"
 rm -f "$work/bad.csv" "$work/bad.json" "$work/bad.npy"
