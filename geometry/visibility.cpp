@@ -448,12 +448,6 @@ struct VisibilityEngine::Impl {
           continue;
         }
         ++counters.occluders_tested;
-        if (options.tangent_margin > 0 &&
-            std::all_of(o.vertices.begin(), o.vertices.end(),
-                        [&](const Vec3& v) { return dot(n, v - p) <= options.tangent_margin; })) {
-          ++counters.occluders_box_culled;
-          continue;
-        }
         if (!survives<Signs>(o, p, n, w, sh, horizon, beyond)) continue;
         found.emplace_back(rank[i], &o);
         if (nearest.size() < kNearest) nearest.push_back(&o);

@@ -81,13 +81,6 @@ struct VisibilityOptions {
   // receiver's side of it before they are projected (the new vertices lie on that input plane
   // and are certified as those on the cone's planes are).
   bool occluders_beyond = true;
-  // A receiver on a surface (a radiosity node, DESIGN.md §4) lies in that surface's plane only up
-  // to the roundoff of its coordinates, so a polygon coplanar with the surface (the floor of the
-  // next room, the same wall's other panel) is seen at a grazing angle, as a sliver of zero area
-  // in exact arithmetic but one that no interval can certify (every such pair went to rationals).
-  // With a margin > 0, occluder pieces whose vertices all lie within it of the receiver's tangent
-  // plane or behind it (n·(v − p) ≤ margin, in double) hide nothing. 0 (sensors): exact.
-  double tangent_margin = 0;
 };
 
 class VisibilityEngine {

@@ -142,11 +142,6 @@ class Transport {
   std::size_t unknowns() const { return 6 * mesh_.elements.size(); }
   std::size_t surface_count() const { return mesh_.surfaces.size(); }
 
-  // VisibilityOptions::tangent_margin for a receiver on a surface (a node), 0 for a sensor: the
-  // margin of the live sides' test, far above the roundoff of a node's coordinates (1e-16 of the
-  // model) and far below any gap between surfaces.
-  double tangent_margin(bool on_surface) const { return on_surface ? kSideMargin * scale_ : 0.0; }
-
   double max_edge(const RadiosityElement& e) const {
     const Vec3 c = e.point(1.0 / 3, 1.0 / 3, 1.0 / 3);
     double d = sensor_box_.empty() ? std::numeric_limits<double>::infinity() : sensor_box_.distance(c);
@@ -170,7 +165,6 @@ class Transport {
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
-    full.tangent_margin = half.tangent_margin = tangent_margin(own != VisibilityOptions::kNoOccluder);
     for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
       const Aperture& ap = scene_.apertures[a];
       // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
@@ -204,7 +198,6 @@ class Transport {
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;  // the box's occluders start with the scene's
-    full.tangent_margin = half.tangent_margin = tangent_margin(own != VisibilityOptions::kNoOccluder);
     for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
       // The region above the horizon is part of the whole one: where that is empty (every
       // receiver inside a closed room), the second query is left out, exactly.
@@ -227,7 +220,6 @@ class Transport {
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
-    full.tangent_margin = half.tangent_margin = tangent_margin(own != VisibilityOptions::kNoOccluder);
     const auto add = [&](const VisibilityEngine& eng, std::size_t i, const Aperture* ap, std::int32_t index) {
       const SphericalRegion all = eng.visible_region(x, n, i, c, full);
       if (all.empty()) return;
@@ -264,7 +256,6 @@ class Transport {
     VisibilityOptions opt;
     opt.clip_to_horizon = false;
     opt.occluders_beyond = false;
-    opt.tangent_margin = tangent_margin(own_surface != std::size_t(-1));
     for (std::size_t s = 0; s < mesh.surfaces.size(); ++s) {
       if (s == own_surface) continue;
       const RadiositySurface& surf = mesh.surfaces[s];
