@@ -44,4 +44,19 @@ inline GaussLegendreRule gauss_legendre(int n) {
   return rule;
 }
 
+// The same rule mapped to [0, 1], rounded to double: the fixed product rules over fan triangles
+// (simulation/annual_coefficients.cpp, annual_reflections.cpp).
+struct UnitGaussRule {
+  std::vector<double> x, w;
+};
+inline UnitGaussRule gauss_legendre_unit(int n) {
+  const GaussLegendreRule r = gauss_legendre(n);
+  UnitGaussRule u;
+  for (int i = 0; i < n; ++i) {
+    u.x.push_back(double((r.x[std::size_t(i)] + 1) / 2));
+    u.w.push_back(double(r.w[std::size_t(i)] / 2));
+  }
+  return u;
+}
+
 }  // namespace daylit::quadrature

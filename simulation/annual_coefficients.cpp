@@ -14,19 +14,8 @@ namespace daylit {
 
 namespace {
 
-// The n-point Gauss–Legendre rule mapped to [0, 1].
-struct UnitRule {
-  std::vector<double> x, w;
-};
-UnitRule unit_rule(int n) {
-  const quadrature::GaussLegendreRule r = quadrature::gauss_legendre(n);
-  UnitRule u;
-  for (int i = 0; i < n; ++i) {
-    u.x.push_back(double((r.x[std::size_t(i)] + 1) / 2));
-    u.w.push_back(double(r.w[std::size_t(i)] / 2));
-  }
-  return u;
-}
+using UnitRule = quadrature::UnitGaussRule;
+const auto unit_rule = quadrature::gauss_legendre_unit;
 
 // φ_j(u) for every j, into `out` (size annual_basis_size(degree)).
 void evaluate_basis(const Vec3& u, int degree, double* out) {

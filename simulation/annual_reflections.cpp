@@ -34,18 +34,7 @@ struct Columns {
 // Per node: (channel × Columns::size() + column, value).
 using NodeColumns = std::vector<std::pair<std::uint32_t, double>>;
 
-struct Rule {
-  std::vector<double> x, w;  // on [0, 1]
-};
-Rule unit_rule(int n) {
-  const quadrature::GaussLegendreRule r = quadrature::gauss_legendre(n);
-  Rule u;
-  for (int i = 0; i < n; ++i) {
-    u.x.push_back(double((r.x[std::size_t(i)] + 1) / 2));
-    u.w.push_back(double(r.w[std::size_t(i)] / 2));
-  }
-  return u;
-}
+using Rule = quadrature::UnitGaussRule;
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 
@@ -80,7 +69,7 @@ void triangle_rule(const Vec3& a, const Vec3& b, const Vec3& c, const Rule& rule
 std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperator& op, const DirectionGrid& fine,
                                       const DirectionGrid& coarse, const std::vector<int>& group_of_aperture, std::size_t groups,
                                       const Columns& columns) {
-  static const Rule rule = unit_rule(kReflectionRuleOrder);
+  static const Rule rule = quadrature::gauss_legendre_unit(kReflectionRuleOrder);
   const double max_angle = kReflectionTriangleDeg * kPi / 180;
   const std::size_t width = columns.size(), total = (groups + 1) * width;
   std::vector<NodeColumns> out(op.nodes.size());

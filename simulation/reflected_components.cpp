@@ -737,10 +737,14 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 
 }  // namespace
 
-ReflectionResult reflected_components(const Scene& scene, const std::vector<double>& reflectance,
-                                      const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
-                                      const ReflectionOptions& options) {
-  const double rho_max = check_inputs(scene, reflectance, options);
+namespace {
+
+// The inputs checked (check_inputs, and a finite element size ≥ 0) and the element size resolved
+// (0: automatic_element_size); rho_max: the largest reflectance.
+ReflectionOptions checked_options(const Scene& scene, const std::vector<double>& reflectance,
+                                  const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options,
+                                  double& rho_max) {
+  rho_max = check_inputs(scene, reflectance, options);
   if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
     std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
     message += std::to_string(options.element_size);
@@ -749,6 +753,16 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   }
   ReflectionOptions opt = options;
   if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
+  return opt;
+}
+
+}  // namespace
+
+ReflectionResult reflected_components(const Scene& scene, const std::vector<double>& reflectance,
+                                      const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
+                                      const ReflectionOptions& options) {
+  double rho_max = 0;
+  const ReflectionOptions opt = checked_options(scene, reflectance, grids, options, rho_max);
   ReflectionResult result;
   result.element_size = opt.element_size;
   result.reflectance_max = rho_max;
@@ -825,15 +839,8 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
                                        const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
                                        const ReflectionOptions& options, bool coarse, std::size_t max_nodes,
                                        const std::vector<const SensorGrid*>* response_grids) {
-  const double rho_max = check_inputs(scene, reflectance, options);
-  if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
-    std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
-    message += std::to_string(options.element_size);
-    message += " is not a positive number";
-    throw Error(message);
-  }
-  ReflectionOptions opt = options;
-  if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
+  double rho_max = 0;
+  const ReflectionOptions opt = checked_options(scene, reflectance, grids, options, rho_max);
   ReflectionOperator op;
   op.element_size = opt.element_size * (coarse ? 2 : 1);
   Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
