@@ -109,8 +109,9 @@ int run_annual(AnnualCommandOptions opt) {
                   << " is not used by annual runs: the reflected part is computed at --element-size, its estimate "
                      "against a mesh twice as coarse\n";
   // This rank's block of every grid's sensors (cli/mpi_shards.hpp; with one rank, the whole grid).
-  std::vector<SensorGrid> blocks;
-  for (const auto& g : model.grids) blocks.push_back(mpi::sub_grid(g, mpi::block(g.sensors.size())));
+  std::vector<SensorGrid> storage(model.grids.size());
+  std::vector<const SensorGrid*> blocks;
+  for (std::size_t g = 0; g < model.grids.size(); ++g) blocks.push_back(&mpi::rank_block(model.grids[g], storage[g]));
   const std::vector<std::string> hosts = mpi::hosts();
   const std::vector<std::uint64_t> rank_threads = mpi::gather_per_rank(std::uint64_t(threads));
   std::vector<mpi::ShardedGrid> shards;
@@ -126,9 +127,8 @@ int run_annual(AnnualCommandOptions opt) {
     ro.on_progress = reflection_progress_bars(show_progress);
     // The mesh comes from every grid's sensors, so every rank builds it and solves the LU (a fixed
     // cost per rank); the rows of W only for this rank's block of each grid.
-    std::vector<const SensorGrid*> grid_ptrs, block_ptrs;
+    std::vector<const SensorGrid*> grid_ptrs, block_ptrs = blocks;
     for (const auto& g : model.grids) grid_ptrs.push_back(&g);
-    for (const auto& g : blocks) block_ptrs.push_back(&g);
     fine_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, false, kReflectionMaxNodes,
                                   &block_ptrs);
     coarse_op = reflection_operator(model.scene, rho.reflectance, engine, grid_ptrs, ro, true, kReflectionMaxNodes,
@@ -149,7 +149,7 @@ int run_annual(AnnualCommandOptions opt) {
     };
   for (std::size_t gi = 0; gi < model.grids.size(); ++gi) {
     const SensorGrid& grid = model.grids[gi];
-    const SensorGrid& block = blocks[gi];
+    const SensorGrid& block = *blocks[gi];
     const auto tg = std::chrono::steady_clock::now();
     std::optional<ReflectedHours> reflected;
     if (fine_op) {

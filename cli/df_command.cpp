@@ -87,7 +87,8 @@ int run_df(DfOptions opt) {
     // The sky component is sharded (cli/mpi_shards.hpp): this rank computes its block of the
     // grid's sensors (all of them with one rank) and rank 0 gathers the blocks in grid order, so
     // that from here on it holds the whole grid's values as one process computes them.
-    const SensorGrid block = mpi::sub_grid(grid, mpi::block(grid.sensors.size()));
+    SensorGrid storage;
+    const SensorGrid& block = mpi::rank_block(grid, storage);
     ProgressBar bar("df " + grid.name, block.sensors.size(), show_progress);
     const bool gradient = opt.gradient || opt.refine;
     SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient);

@@ -302,7 +302,8 @@ int run_illuminance(IlluminanceOptions opt) {
     // Sharded as in df (cli/mpi_shards.hpp): this rank's block of the sensors, gathered on rank 0
     // in grid order. The sky's setup above (its E_out, the CIE fit, the Perez normalisation) is
     // done by every rank: it is per run, not per sensor.
-    const SensorGrid block = mpi::sub_grid(grid, mpi::block(grid.sensors.size()));
+    SensorGrid storage;
+    const SensorGrid& block = mpi::rank_block(grid, storage);
     ProgressBar bar("illuminance " + grid.name, block.sensors.size(), show_progress);
     GridLux g{&grid, illuminance(engine, model.scene, block, c, [&](std::size_t done) { bar.update(done); }), {}, {}, 0, {}, {}, {}};
     shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(std::chrono::steady_clock::now() - tg).count()}});

@@ -25,6 +25,12 @@ SensorGrid sub_grid(const SensorGrid& grid, SensorBlock b) {
   return part;
 }
 
+const SensorGrid& rank_block(const SensorGrid& grid, SensorGrid& storage) {
+  if (!several()) return grid;
+  storage = sub_grid(grid, block(grid.sensors.size()));
+  return storage;
+}
+
 RankFailure::RankFailure(int c, std::vector<std::string> m)
     : std::runtime_error("another MPI rank failed"), code(c), messages(std::move(m)) {}
 

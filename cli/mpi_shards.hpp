@@ -65,6 +65,10 @@ SensorBlock block(std::size_t count, int r);
 inline SensorBlock block(std::size_t count) { return block(count, rank()); }
 // The grid's sensors of a block, same name and path; with one rank, the whole grid.
 SensorGrid sub_grid(const SensorGrid& grid, SensorBlock block);
+// This rank's block of a grid: the grid itself where one rank computes it all (no copy: a grid
+// may hold millions of sensors, and the bad-input test bounds df's memory per sensor), else its
+// sub_grid, kept in `storage`.
+const SensorGrid& rank_block(const SensorGrid& grid, SensorGrid& storage);
 
 // Every rank's block of a grid's per-sensor values, concatenated in rank order on rank 0 (the
 // whole grid's values, as one process computes them); empty on the other ranks. `local` holds
