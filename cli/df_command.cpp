@@ -93,8 +93,10 @@ int run_df(DfOptions opt) {
     const bool gradient = opt.gradient || opt.refine;
     SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient);
     shards.push_back({grid.name, grid.sensors.size(), {seconds_since(tg)}});
-    sc.sc_percent = mpi::gather(sc.sc_percent, grid.sensors.size());
-    if (gradient) sc.sc_gradient = mpi::gather(sc.sc_gradient, grid.sensors.size());
+    if (mpi::several()) {  // one rank: the values are the grid's already (no copies of millions)
+      sc.sc_percent = mpi::gather(sc.sc_percent, grid.sensors.size());
+      if (gradient) sc.sc_gradient = mpi::gather(sc.sc_gradient, grid.sensors.size());
+    }
     sc.counters = mpi::sum(sc.counters);
     shards.back().time_s = mpi::gather_per_rank(shards.back().time_s.front());
     if (!mpi::root()) continue;  // the statistics, refinement and reports are rank 0's
