@@ -195,13 +195,6 @@ Vec3 DirectionGrid::direction(std::size_t v) const noexcept {
   return {std::cos(alt) * std::cos(az), std::cos(alt) * std::sin(az), std::sin(alt)};
 }
 
-void DirectionGrid::interpolation(const Vec3& u, std::size_t vertex_out[4], double weight_out[4]) const noexcept {
-  const double alt = std::asin(std::clamp(u.z / norm(u), 0.0, 1.0));
-  double az = std::atan2(u.y, u.x);
-  if (az < 0) az += 2 * kPi;
-  interpolation_at(alt, az, vertex_out, weight_out);
-}
-
 void DirectionGrid::interpolation_at(double alt, double az, std::size_t vertex_out[4], double weight_out[4]) const noexcept {
   const double fi = alt / (kPi / 2) * rows, fj = az / (2 * kPi) * columns;
   const int i = std::clamp(int(std::floor(fi)), 0, rows - 1);
@@ -269,8 +262,6 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   out.sensors = std::size_t(meshes.front().d.front().rows());
   out.hours = sky_hours.size();
   out.channels = groups + 1;
-  out.nodes = fine_op.nodes.size();
-  out.columns = width;
   out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
   out.estimate.assign(out.sensors * out.hours, 0.0f);
 

@@ -51,10 +51,8 @@ struct DirectionGrid {
     return std::size_t(i) * std::size_t(columns) + std::size_t(((j % columns) + columns) % columns);
   }
   Vec3 direction(std::size_t vertex) const noexcept;
-  // The four vertices of the cell holding u (u_z ≥ 0 up to roundoff) and their bilinear weights
-  // in (altitude, azimuth), summing to 1.
-  void interpolation(const Vec3& u, std::size_t vertex_out[4], double weight_out[4]) const noexcept;
-  // The same from the altitude in [0, π/2] and the azimuth in [0, 2π) (radians).
+  // The four vertices of the cell holding the direction at altitude ∈ [0, π/2] and azimuth ∈
+  // [0, 2π) (radians) and their bilinear weights in (altitude, azimuth), summing to 1.
   void interpolation_at(double altitude, double azimuth, std::size_t vertex_out[4], double weight_out[4]) const noexcept;
 };
 
@@ -63,7 +61,6 @@ struct ReflectedHours {
   std::size_t sensors = 0, hours = 0, channels = 0;  // channels: window groups, then "lit outdoors"
   std::vector<float> lux;                            // [(sensor × hours + hour) × channels]
   std::vector<float> estimate;                       // [sensor × hours]: the error estimate, all channels
-  std::size_t nodes = 0, columns = 0;
   double time_s = 0;
 };
 
