@@ -250,6 +250,23 @@ class ShadowClipper {
     }
   }
 
+  // As run, where the blockers with pane[b] ≥ 0 transmit: their shadows split the pieces instead
+  // of removing them, and every piece is appended to the region of its tag, the bits pane[b] of
+  // the transmitting blockers whose shadows it lies in (tag 0: seen through none).
+  void run_tagged(const std::vector<const ConvexPiece*>& blockers, const std::vector<int>& pane,
+                  std::vector<std::pair<std::uint64_t, SphericalRegion>>& regions, bool sources = false) {
+    std::vector<Vertex3<FT>> w;
+    if (!prepare(w)) return;
+    std::vector<std::uint64_t> tags;
+    const auto pieces = visible_pieces(blockers, w, &pane, &tags);
+    for (std::size_t q = 0; q < pieces.size(); ++q) {
+      auto it = std::find_if(regions.begin(), regions.end(), [&](const auto& r) { return r.first == tags[q]; });
+      if (it == regions.end()) it = regions.insert(regions.end(), {tags[q], SphericalRegion{}});
+      it->second.loops.push_back(directions(pieces[q]));
+      if (sources) it->second.edge_sources.push_back(edge_sources(pieces[q]));
+    }
+  }
+
   // Whether the blockers leave nothing of the piece, without building any direction. Exact on the
   // exact path (every sign is the exact sign): then any superset of the blockers, in any order,
   // leaves nothing either.
@@ -282,32 +299,49 @@ class ShadowClipper {
   // built once the piece is all hidden. The shadows and their order are those of building them
   // all first, so the result is the same; only an uncertain sign in a shadow that is never built
   // no longer sends an empty region to the rationals (whose answer is the same empty region).
+  // With `pane` (one entry per blocker), the blockers with pane[b] ≥ 0 split the pieces into the
+  // parts outside and inside their shadows, and `tags` gets each piece's bits (see run_tagged).
+  // Their shadows are built as the others' are, so the inside parts are certified alike.
   std::vector<std::vector<Vertex2<FT>>> visible_pieces(const std::vector<const ConvexPiece*>& blockers,
-                                                       const std::vector<Vertex3<FT>>& w) {
+                                                       const std::vector<Vertex3<FT>>& w,
+                                                       const std::vector<int>* pane = nullptr,
+                                                       std::vector<std::uint64_t>* tags = nullptr) {
     blockers_ = &blockers;
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
+    std::vector<std::uint64_t> tag(1, 0);
     for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out});
     for (std::size_t b = 0; b < blockers.size(); ++b) {
+      const int bit = pane ? (*pane)[b] : -1;
       std::optional<Box2> box;
-      if (skip_disjoint_) {
+      if (skip_disjoint_ || bit >= 0) {
         box = projected_box(*blockers[b]);
         if (box && std::none_of(pieces.begin(), pieces.end(), [&](const auto& P) { return box->meets(box_of(P)); })) {
-          ++skipped_;
+          if (bit < 0) ++skipped_;
           continue;
         }
       }
       const std::optional<Shadow> shadow = shadow_of(*blockers[b], int(b), w);
       if (!shadow) continue;
       std::vector<std::vector<Vertex2<FT>>> next;
-      for (auto& P : pieces) {
+      std::vector<std::uint64_t> next_tag;
+      for (std::size_t q = 0; q < pieces.size(); ++q) {
+        auto& P = pieces[q];
+        std::vector<V2> inside;
         if (box && !box->meets(box_of(P)))
           next.push_back(std::move(P));
         else
-          subtract(P, *shadow, next);
+          subtract(P, *shadow, next, bit >= 0 ? &inside : nullptr);
+        next_tag.resize(next.size(), tag[q]);
+        if (inside.size() >= 3) {
+          next.push_back(std::move(inside));
+          next_tag.push_back(tag[q] | (std::uint64_t(1) << bit));
+        }
       }
       pieces = std::move(next);
+      tag = std::move(next_tag);
       if (pieces.empty()) break;
     }
+    if (tags) *tags = std::move(tag);
     return pieces;
   }
 
@@ -674,7 +708,8 @@ class ShadowClipper {
   }
 
   // P − C for convex P and C (both counter-clockwise), appended to `out` as convex pieces.
-  void subtract(const std::vector<V2>& P, const Shadow& shadow, std::vector<std::vector<V2>>& out) const {
+  void subtract(const std::vector<V2>& P, const Shadow& shadow, std::vector<std::vector<V2>>& out,
+                std::vector<V2>* inside = nullptr) const {
     const std::vector<V2>& C = shadow.loop;
     std::vector<V2> rest = P;
     for (std::size_t e = 0; e < C.size(); ++e) {
@@ -699,6 +734,7 @@ class ShadowClipper {
       rest = keep_side(rest, side, +1, a.out);
     }
     // What remains lies inside C: in shadow.
+    if (inside) *inside = std::move(rest);
   }
 
   // Direction d = X − p to a vertex X of a visible piece, built afresh in number type T from what

@@ -23,9 +23,11 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
+#include <string>
 #include <type_traits>
 
 #include "geometry/convex_pieces.hpp"
+#include "geometry/error.hpp"
 #include "geometry/predicates.hpp"
 #include "geometry/shadow_clipping.hpp"
 
@@ -208,6 +210,11 @@ struct VisibilityEngine::Impl {
   std::vector<OccluderPatch> patches;  // by occluder polygon (ConvexPiece::source)
   std::vector<std::vector<ConvexPiece>> apertures;
   std::size_t aperture_pieces = 0;
+  // AperturesAre::panes with more than one aperture: every aperture's pieces (source: the
+  // aperture), which block the views through the others from beyond and filter them in front.
+  bool panes = false;
+  std::vector<ConvexPiece> pane_pieces;
+  std::vector<Box> pane_boxes;
 
   // The rank of every slot in the depth-first order that visits the right child first: the order
   // in which collect() once visited the survivors, and in which their shadows are still
@@ -389,6 +396,81 @@ struct VisibilityEngine::Impl {
     return !std::all_of(wv.begin(), wv.end(), [&](const Vec3& v) { return sp * Signs::normal_dot_diff(o0, ob, oc, v, from) >= 0; });
   }
 
+  // Planes of the cone over w from p, m·(x − p) ≥ 0 inside, in double for the box tests.
+  static std::vector<CullPlane> cone_planes(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh,
+                                            const VisibilityOptions& options) {
+    std::vector<CullPlane> planes;
+    const auto& wv = w.vertices;
+    const Vec3 eb = wv[w.base_b] - wv[0], ec = wv[w.base_c] - wv[0];
+    // Without the occluders beyond: p's side of the aperture's plane, sh·N_W·(x − w0) ≥ 0, first,
+    // so that whole BVH subtrees behind the luminaire's surface are dropped at once.
+    if (!options.occluders_beyond) {
+      const Vec3 m = double(sh) * cross(eb, ec);
+      planes.push_back({m, norm(eb) * norm(ec), dot(m, p - wv[0]), norm(p - wv[0])});
+    }
+    planes.push_back({n, 1});
+    if (options.clip_to_horizon) planes.push_back({{0, 0, 1}, 1});
+    planes.push_back({double(-sh) * cross(eb, ec), norm(eb) * norm(ec)});
+    for (std::size_t e = 0; e < wv.size(); ++e) {
+      const Vec3 a = wv[e] - p, b = wv[(e + 1) % wv.size()] - p;
+      planes.push_back({double(-sh) * cross(a, b), norm(a) * norm(b)});
+    }
+    return planes;
+  }
+
+  // The other apertures' pieces that may meet the view through w from p (the same culling as
+  // occluders'), appended to `blockers` after them: those beyond w's plane (seen from p) as
+  // blockers, pane[b] = −1, since the sky past them is their own aperture's; those on p's side
+  // of it as transmitting, pane[b] the bit of their aperture in `front`. A piece that crosses
+  // w's plane is taken as in front (counted: panes_crossing), which counts the view through its
+  // part beyond twice, once here and once through its own aperture.
+  template <class Signs>
+  void collect_panes(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
+                     std::vector<const ConvexPiece*>& blockers, std::vector<int>& pane, std::vector<std::uint32_t>& front,
+                     VisibilityCounters& counters) const {
+    const std::vector<CullPlane> planes = cone_planes(p, n, w, sh, options);
+    const auto& wv = w.vertices;
+    std::vector<const ConvexPiece*> beyond_w, in_front;
+    for (std::size_t i = 0; i < pane_pieces.size(); ++i) {
+      const ConvexPiece& q = pane_pieces[i];
+      if (q.source == w.source) continue;
+      if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(pane_boxes[i], pl, p); })) continue;
+      if (!survives<Signs>(q, p, n, w, sh, options.clip_to_horizon, options.occluders_beyond)) continue;
+      bool near_side = false, far_side = false;
+      for (const Vec3& v : q.vertices) {
+        const int side = sh * Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, wv[0]);
+        near_side |= side > 0;
+        far_side |= side < 0;
+      }
+      if (!near_side && !far_side) continue;  // in w's plane: it meets the view only on w's boundary
+      if (!near_side) {
+        beyond_w.push_back(&q);
+        continue;
+      }
+      if (far_side) ++counters.panes_crossing;
+      in_front.push_back(&q);
+    }
+    if (beyond_w.empty() && in_front.empty()) return;
+    pane.assign(blockers.size(), -1);
+    for (const ConvexPiece* q : beyond_w) {
+      blockers.push_back(q);
+      pane.push_back(-1);
+    }
+    for (const ConvexPiece* q : in_front) {
+      auto it = std::find(front.begin(), front.end(), std::uint32_t(q->source));
+      if (it == front.end()) {
+        if (front.size() == 64)
+          throw Error("more than 64 other apertures' panes lie in front of one aperture seen from (" + std::to_string(p.x) +
+                      ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+        it = front.insert(front.end(), std::uint32_t(q->source));
+      }
+      blockers.push_back(q);
+      pane.push_back(int(it - front.begin()));
+    }
+    counters.panes_beyond += beyond_w.size();
+    counters.panes_in_front += in_front.size();
+  }
+
   // The occluder pieces that may hide part of w from p, in the order of subtraction (rank). The
   // hierarchy is walked nearest box first, so that what is near the receiver (its own room's walls)
   // comes first; in the exact modes each of the first kCoverTries polygons met is tested for
@@ -404,23 +486,7 @@ struct VisibilityEngine::Impl {
     constexpr std::size_t kNearest = 12;
     const bool try_cover = mode != GeometryMode::floating;
     const bool horizon = options.clip_to_horizon, beyond = options.occluders_beyond;
-    // Planes of the cone, m·(x − p) ≥ 0 inside, in double for the box tests.
-    std::vector<CullPlane> planes;
-    const auto& wv = w.vertices;
-    const Vec3 eb = wv[w.base_b] - wv[0], ec = wv[w.base_c] - wv[0];
-    // Without the occluders beyond: p's side of the aperture's plane, sh·N_W·(x − w0) ≥ 0, first,
-    // so that whole BVH subtrees behind the luminaire's surface are dropped at once.
-    if (!beyond) {
-      const Vec3 m = double(sh) * cross(eb, ec);
-      planes.push_back({m, norm(eb) * norm(ec), dot(m, p - wv[0]), norm(p - wv[0])});
-    }
-    planes.push_back({n, 1});
-    if (horizon) planes.push_back({{0, 0, 1}, 1});
-    planes.push_back({double(-sh) * cross(eb, ec), norm(eb) * norm(ec)});
-    for (std::size_t e = 0; e < wv.size(); ++e) {
-      const Vec3 a = wv[e] - p, b = wv[(e + 1) % wv.size()] - p;
-      planes.push_back({double(-sh) * cross(a, b), norm(a) * norm(b)});
-    }
+    const std::vector<CullPlane> planes = cone_planes(p, n, w, sh, options);
     std::vector<std::pair<int, const ConvexPiece*>> found;
     std::size_t tried[kCoverTries];
     int tries = 0;
@@ -501,8 +567,9 @@ struct VisibilityEngine::Impl {
   }
 
   template <class Signs, class FT>
-  void evaluate(const Vec3& p, const Vec3& n, const ConvexPiece& w, const VisibilityOptions& options, SphericalRegion& region,
+  void evaluate(const Vec3& p, const Vec3& n, const ConvexPiece& w, const VisibilityOptions& options, ApertureView& view,
                 VisibilityCounters& counters) const {
+    SphericalRegion& region = view.region;
     ++counters.pairs;
     const auto& wv = w.vertices;
     const int sh = Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], p, wv[0]);
@@ -536,6 +603,9 @@ struct VisibilityEngine::Impl {
       std::stable_sort(by_distance.begin(), by_distance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       for (std::size_t i = 0; i < blockers.size(); ++i) blockers[i] = by_distance[i].second;
     }
+    std::vector<int> pane;              // per blocker, with other apertures' panes among them
+    std::vector<std::uint32_t> front;   // the apertures whose panes lie in front, by bit
+    if (panes) collect_panes<Signs>(p, n, w, sh, options, blockers, pane, front, counters);
     // The unobstructed shortcut; where it declines (a large piece, or a vertex it cannot round
     // within 2^-45), the general clipper below, certified in the exact mode.
     const bool shortcut = blockers.empty() && !reference && unobstructed_directions<Signs>(p, n, w, sh, options, region);
@@ -545,22 +615,36 @@ struct VisibilityEngine::Impl {
     }
     blockers.empty() ? ++counters.pairs_unobstructed : ++counters.pairs_clipped;
     counters.occluders_clipped += blockers.size();
-    const auto clip = [&](auto number, SphericalRegion& out) {
+    // Into `out` (tag 0: the region) and `tagged` (other tags: seen through panes in front).
+    const auto clip = [&](auto number, SphericalRegion& out, std::vector<std::pair<std::uint64_t, SphericalRegion>>& tagged) {
       clipping::ShadowClipper<decltype(number), Signs> clipper(p, n, w, sh, options.clip_to_horizon, options.occluders_beyond, front_to_back);
-      clipper.run(blockers, out, options.edge_sources);
+      if (pane.empty()) {
+        clipper.run(blockers, out, options.edge_sources);
+      } else {
+        clipper.run_tagged(blockers, pane, tagged, options.edge_sources);
+        for (auto it = tagged.begin(); it != tagged.end(); ++it)
+          if (it->first == 0) {
+            for (auto& loop : it->second.loops) out.loops.push_back(std::move(loop));
+            for (auto& sources : it->second.edge_sources) out.edge_sources.push_back(std::move(sources));
+            tagged.erase(it);
+            break;
+          }
+      }
       counters.occluders_skipped += clipper.skipped();
     };
+    std::vector<std::pair<std::uint64_t, SphericalRegion>> tagged;
     if constexpr (std::is_same_v<FT, double>) {
-      clip(0.0, region);
+      clip(0.0, region, tagged);
     } else {
       SphericalRegion certified;
       bool certain = !reference;
       if (certain) {
         try {
           CGAL::Protect_FPU_rounding<true> upward;
-          clip(Interval(0), certified);
+          clip(Interval(0), certified, tagged);
         } catch (const CGAL::Uncertain_conversion_exception&) {
           certain = false;
+          tagged.clear();
         }
       }
       if (certain) {
@@ -568,13 +652,31 @@ struct VisibilityEngine::Impl {
         for (auto& sources : certified.edge_sources) region.edge_sources.push_back(std::move(sources));
       } else {
         ++counters.pairs_rational;
-        clip(FT(0), region);
+        clip(FT(0), region, tagged);
       }
     }
+    for (auto& [tag, part] : tagged) {
+      std::vector<std::uint32_t> through;
+      for (std::size_t bit = 0; bit < front.size(); ++bit)
+        if (tag >> bit & 1) through.push_back(front[bit]);
+      std::sort(through.begin(), through.end());
+      add_behind(view, std::move(through), std::move(part));
+    }
+  }
+
+  static void add_behind(ApertureView& view, std::vector<std::uint32_t> through, SphericalRegion part) {
+    auto it = std::find_if(view.behind.begin(), view.behind.end(), [&](const PaneView& b) { return b.panes == through; });
+    if (it == view.behind.end()) {
+      view.behind.push_back({std::move(part), std::move(through)});
+      return;
+    }
+    for (auto& loop : part.loops) it->region.loops.push_back(std::move(loop));
+    for (auto& sources : part.edge_sources) it->region.edge_sources.push_back(std::move(sources));
   }
 };
 
-VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order) : impl_(std::make_unique<Impl>()) {
+VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order, AperturesAre apertures)
+    : impl_(std::make_unique<Impl>()) {
   impl_->mode = mode;
   impl_->order_of_subtraction = order;
   for (std::size_t s = 0; s < scene.occluders.size(); ++s)
@@ -595,6 +697,15 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, Subtra
     impl_->apertures.push_back(convex_pieces(scene.apertures[a].polygon, a));
     impl_->aperture_pieces += impl_->apertures.back().size();
   }
+  impl_->panes = apertures == AperturesAre::panes && scene.apertures.size() > 1;
+  if (impl_->panes)
+    for (const auto& pieces : impl_->apertures)
+      for (const ConvexPiece& q : pieces) {
+        impl_->pane_pieces.push_back(q);
+        Box b;
+        for (const Vec3& v : q.vertices) b.add(v);
+        impl_->pane_boxes.push_back(b);
+      }
 }
 
 VisibilityEngine::~VisibilityEngine() = default;
@@ -605,6 +716,7 @@ std::size_t VisibilityEngine::aperture_count() const noexcept { return impl_->ap
 std::size_t VisibilityEngine::occluder_piece_count() const noexcept { return impl_->occluders.size(); }
 std::size_t VisibilityEngine::aperture_piece_count() const noexcept { return impl_->aperture_pieces; }
 GeometryMode VisibilityEngine::mode() const noexcept { return impl_->mode; }
+bool VisibilityEngine::panes_interact() const noexcept { return impl_->panes; }
 
 SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                                  VisibilityCounters& counters) const {
@@ -613,14 +725,23 @@ SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, s
 
 SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
                                                  const VisibilityOptions& options) const {
-  SphericalRegion region;
+  return aperture_view(p, n, aperture, counters, options).region;
+}
+
+ApertureView VisibilityEngine::aperture_view(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
+                                             const VisibilityOptions& options) const {
+  ApertureView view;
   for (const ConvexPiece& piece : impl_->apertures.at(aperture)) {
+    ApertureView part;
     if (impl_->mode != GeometryMode::floating)
-      impl_->evaluate<ExactSigns, LazyExact>(p, n, piece, options, region, counters);
+      impl_->evaluate<ExactSigns, LazyExact>(p, n, piece, options, part, counters);
     else
-      impl_->evaluate<FloatSigns, double>(p, n, piece, options, region, counters);
+      impl_->evaluate<FloatSigns, double>(p, n, piece, options, part, counters);
+    for (auto& loop : part.region.loops) view.region.loops.push_back(std::move(loop));
+    for (auto& sources : part.region.edge_sources) view.region.edge_sources.push_back(std::move(sources));
+    for (auto& b : part.behind) Impl::add_behind(view, std::move(b.panes), std::move(b.region));
   }
-  return region;
+  return view;
 }
 
 }  // namespace daylit

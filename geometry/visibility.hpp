@@ -44,6 +44,9 @@ struct VisibilityCounters {
   std::uint64_t occluders_tested = 0;        // occluder pieces that reached the exact predicates
   std::uint64_t occluders_clipped = 0;       // occluder pieces that survived and were clipped
   std::uint64_t occluders_skipped = 0;       // of those, shadows skipped by boxes (front_to_back)
+  std::uint64_t panes_beyond = 0;            // other apertures' pieces beyond the aperture (they block)
+  std::uint64_t panes_in_front = 0;          // and in front of it (they transmit: ApertureView::behind)
+  std::uint64_t panes_crossing = 0;          // of those in front, pieces that cross the aperture's plane
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     pairs += o.pairs;
@@ -56,6 +59,9 @@ struct VisibilityCounters {
     occluders_tested += o.occluders_tested;
     occluders_clipped += o.occluders_clipped;
     occluders_skipped += o.occluders_skipped;
+    panes_beyond += o.panes_beyond;
+    panes_in_front += o.panes_in_front;
+    panes_crossing += o.panes_crossing;
     return *this;
   }
 };
@@ -83,11 +89,39 @@ struct VisibilityOptions {
   bool occluders_beyond = true;
 };
 
+// What a scene's apertures are to each other.
+enum class AperturesAre {
+  // Sky openings, each open or filled with a transmitting pane (glass, trans, BSDF): the view
+  // through aperture A ends at the sky only where nothing lies beyond A, neither an occluder nor
+  // another pane (the sky beyond that pane is its own aperture's), and where other panes lie
+  // between the receiver and A it is seen through them as well (ApertureView::behind): light that
+  // passes several panes (an interior window, then the façade; a window, then a glass-modified
+  // tree) is counted once, under the last pane, with every pane on the way named.
+  panes,
+  // Luminaires that do not see each other (the surfaces of a radiosity solution, each queried
+  // alone): none hides or filters another.
+  independent,
+};
+
+// Directions through aperture A that also pass other apertures' panes between the receiver and A.
+struct PaneView {
+  SphericalRegion region;
+  std::vector<std::uint32_t> panes;  // those other apertures (Scene::apertures indices), ascending
+};
+struct ApertureView {
+  SphericalRegion region;        // through A alone: what visible_region returns
+  std::vector<PaneView> behind;  // through A and other panes in front of it, by pane set
+  bool empty() const noexcept { return region.empty() && behind.empty(); }
+};
+
 class VisibilityEngine {
  public:
   // Splits apertures and occluders into convex pieces and builds the culling hierarchy.
   // Throws daylit::Error for polygons that cross themselves.
-  VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order = SubtractionOrder::as_built);
+  // With more than one aperture and AperturesAre::panes, every aperture's pieces also take part in
+  // the others' visibility (ApertureView).
+  VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order = SubtractionOrder::as_built,
+                   AperturesAre apertures = AperturesAre::panes);
   ~VisibilityEngine();
   VisibilityEngine(VisibilityEngine&&) noexcept;
   VisibilityEngine& operator=(VisibilityEngine&&) noexcept;
@@ -99,8 +133,9 @@ class VisibilityEngine {
 
   // The directions from receiver p (normal n, unit) that pass through aperture `aperture`, lie in
   // front of the receiver's tangent plane and above the horizontal plane through p, and meet no
-  // occluder on the way (in front of or beyond the aperture). Returned as positively oriented
-  // loops (a partition of the region); empty when nothing is visible. Thread-safe.
+  // occluder on the way (in front of or beyond the aperture), nor, with AperturesAre::panes, any
+  // other aperture's pane. Returned as positively oriented loops (a partition of the region);
+  // empty when nothing is visible. Thread-safe.
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                  VisibilityCounters& counters) const;
   // The same with options: without the horizon cut and without the occluders beyond the aperture
@@ -108,6 +143,14 @@ class VisibilityEngine {
   // all three geometry modes (the combinatorics are exact in all but degenerate float cases).
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
                                  const VisibilityOptions& options) const;
+  // The same region, and the directions through the aperture that pass other panes in front of it
+  // (AperturesAre::panes): together, every direction by which the sky reaches p with this aperture
+  // as the last pane on the way. The pane sets partition those directions: each direction is in
+  // the region of exactly the set of panes its ray crosses.
+  ApertureView aperture_view(const Vec3& p, const Vec3& n, std::size_t aperture, VisibilityCounters& counters,
+                             const VisibilityOptions& options = {}) const;
+  // Whether any aperture can lie in front of another (AperturesAre::panes and more than one).
+  bool panes_interact() const noexcept;
 
  private:
   struct Impl;

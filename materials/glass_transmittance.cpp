@@ -96,16 +96,20 @@ double glass_transmittance(const GlassOptics& glass, double mu) {
 }
 
 TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double tolerance) {
+  return fit_transmittance([&](double mu) { return glass_transmittance(glass, mu); }, tolerance);
+}
+
+TransmittancePolynomial fit_transmittance(const std::function<double(double)>& transmittance, double tolerance) {
   constexpr int kSamples = 600, kChecks = 20001, kMaxDegree = 12;
   std::vector<double> mu(kSamples), value(kSamples);
   for (int i = 0; i < kSamples; ++i) {
     mu[i] = 0.5 * (1 - std::cos(std::numbers::pi * (i + 0.5) / kSamples));  // Chebyshev points on [0, 1]
-    value[i] = glass_transmittance(glass, mu[i]);
+    value[i] = transmittance(mu[i]);
   }
   std::vector<double> check_mu(kChecks), check_value(kChecks);
   for (int i = 0; i < kChecks; ++i) {
     check_mu[i] = double(i) / (kChecks - 1);
-    check_value[i] = glass_transmittance(glass, check_mu[i]);
+    check_value[i] = transmittance(check_mu[i]);
   }
   auto max_error = [&](const std::vector<double>& c) {
     double e = 0;

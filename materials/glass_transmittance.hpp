@@ -5,6 +5,7 @@
 // incidence ... become higher moments of the same kind").
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -52,5 +53,7 @@ double evaluate_polynomial(const std::vector<double>& c, double mu) noexcept;
 double max_slope(const std::vector<double>& c);
 
 TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double tolerance = 2e-5);
+// The same fit of any transmittance T(μ) on [0, 1] (the product of two panes' along one view).
+TransmittancePolynomial fit_transmittance(const std::function<double(double)>& transmittance, double tolerance = 2e-5);
 
 }  // namespace daylit

@@ -8,6 +8,7 @@
 #include "illumination/cap_clip.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "illumination/moments.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/sensor_loop.hpp"
 
 namespace daylit {
@@ -91,11 +92,22 @@ double sun_through(const DaylightConditions& c, const Aperture& aperture, const 
 SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
                                      const DaylightConditions& c, VisibilityCounters& counters) {
   SensorIlluminance out;
+  const auto add = [&](const Aperture& aperture, const SphericalRegion& region) {
+    add_sky(c, aperture, region, sensor.normal, out);
+    if (c.has_sun()) out.sun += sun_through(c, aperture, region, sensor.normal);
+  };
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
-    const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
-    if (region.empty()) continue;
-    add_sky(c, scene.apertures[a], region, sensor.normal, out);
-    if (c.has_sun()) out.sun += sun_through(c, scene.apertures[a], region, sensor.normal);
+    const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
+    if (!view.region.empty()) add(scene.apertures[a], view.region);
+    // Through panes in front as well: their transmittances with the aperture's
+    // (pane_transmittance.hpp; a pane not parallel to the aperture is taken as constant over the
+    // region, and its spread is added to the sky's bound).
+    for (const PaneView& behind : view.behind) {
+      const PanesThrough panes = panes_through(scene, a, behind);
+      const double sky_before = out.sky;
+      add(panes.combined, behind.region);
+      out.sky_error += panes.spread * (out.sky - sky_before);
+    }
   }
   out.sky *= c.zenith_luminance;
   out.sky_error *= c.zenith_luminance;

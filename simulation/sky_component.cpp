@@ -1,9 +1,11 @@
 #include "simulation/sky_component.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "illumination/irradiance_gradient.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/sensor_loop.hpp"
 
 namespace daylit {
@@ -39,10 +41,7 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
     L.alpha = 1.0 / 3;
     L.beta = {0, 0, 2.0 / 3};
   }
-  for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
-    const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters, options);
-    if (region.empty()) continue;
-    const Aperture& aperture = scene.apertures[a];
+  const auto add = [&](const SphericalRegion& region, const Aperture& aperture) {
     if (aperture.angular_transmittance.empty()) {
       irradiance += aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
       L.c = {1};
@@ -59,6 +58,11 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
       L.c = aperture.angular_transmittance;
       gradient += directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
     }
+  };
+  for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
+    const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters, options);
+    if (!view.region.empty()) add(view.region, scene.apertures[a]);
+    for (const PaneView& behind : view.behind) add(behind.region, panes_through(scene, a, behind).combined);
   }
   // The same expression as sky_component_percent's, so that the two agree to the last bit.
   const double e_out = unobstructed_horizontal_irradiance(sky);
@@ -68,20 +72,27 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
 }
 
 double sky_component_percent(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor, SkyModel sky,
-                             VisibilityCounters& counters) {
-  double irradiance = 0;
+                             VisibilityCounters& counters, double* pane_bound_percent) {
+  const auto through = [&](const SphericalRegion& region, const Aperture& aperture) {
+    if (aperture.angular_transmittance.empty()) return aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
+    return sky_irradiance_through_glazing(region, sensor.normal, sky, normalized(newell_normal(aperture.polygon.vertices)),
+                                          aperture.angular_transmittance);
+  };
+  double irradiance = 0, bound = 0;
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
-    const SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
-    if (region.empty()) continue;
-    const Aperture& aperture = scene.apertures[a];
-    if (aperture.angular_transmittance.empty())
-      irradiance += aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
-    else
-      irradiance += sky_irradiance_through_glazing(region, sensor.normal, sky, normalized(newell_normal(aperture.polygon.vertices)),
-                                                   aperture.angular_transmittance);
+    const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
+    if (!view.region.empty()) irradiance += through(view.region, scene.apertures[a]);
+    for (const PaneView& behind : view.behind) {
+      const PanesThrough panes = panes_through(scene, a, behind);
+      const double e = through(behind.region, panes.combined);
+      irradiance += e;
+      bound += panes.spread * e;
+    }
   }
-  const double percent = 100 * irradiance / unobstructed_horizontal_irradiance(sky);
+  const double e_out = unobstructed_horizontal_irradiance(sky);
+  const double percent = 100 * irradiance / e_out;
   if (!std::isfinite(percent)) throw non_finite(sensor);
+  if (pane_bound_percent) *pane_bound_percent = 100 * bound / e_out;
   return percent;
 }
 
@@ -91,16 +102,25 @@ SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& sc
   const std::size_t count = grid.sensors.size();
   result.sc_percent.assign(count, 0.0);
   if (gradient) result.sc_gradient.assign(count, Vec3{});
-  const auto counters = for_each_sensor<VisibilityCounters>(count, 64, progress, [&](std::size_t i, VisibilityCounters& local) {
+  struct Local {
+    VisibilityCounters counters;
+    double pane_bound_percent = 0;
+  };
+  const auto counters = for_each_sensor<Local>(count, 64, progress, [&](std::size_t i, Local& local) {
     if (gradient) {
-      const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local);
+      const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local.counters);
       result.sc_percent[i] = point.percent;
       result.sc_gradient[i] = point.gradient;
     } else {
-      result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local);
+      double bound = 0;
+      result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local.counters, &bound);
+      local.pane_bound_percent = std::max(local.pane_bound_percent, bound);
     }
   });
-  for (const auto& c : counters) result.counters += c;
+  for (const auto& c : counters) {
+    result.counters += c.counters;
+    result.pane_bound_percent = std::max(result.pane_bound_percent, c.pane_bound_percent);
+  }
   return result;
 }
 

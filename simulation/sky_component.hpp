@@ -16,6 +16,9 @@ struct SkyComponentResult {
   std::vector<double> sc_percent;  // per sensor, in grid order
   std::vector<Vec3> sc_gradient;   // per sensor when asked for: ∇_p SC, percent per model unit
   VisibilityCounters counters;
+  // The largest bound over the sensors (DF points) of what taking panes not parallel to the
+  // aperture as constant over a region may cost (pane_transmittance.hpp); 0 when exact.
+  double pane_bound_percent = 0;
 };
 
 // Called now and then with the number of sensors finished so far (from any thread, serialised).
@@ -29,9 +32,12 @@ using ProgressCallback = std::function<void(std::size_t done)>;
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                                  SkyModel sky, const ProgressCallback& progress = {}, bool gradient = false);
 
-// The same for one sensor (no threading): the sky component in percent.
+// Where panes lie in front of an aperture (VisibilityEngine::aperture_view), the sky seen through
+// them too is counted with all their transmittances (pane_transmittance.hpp).
+// The same for one sensor (no threading): the sky component in percent, and in `pane_bound_percent`
+// the bound of SkyComponentResult::pane_bound_percent at this sensor.
 double sky_component_percent(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor, SkyModel sky,
-                             VisibilityCounters& counters);
+                             VisibilityCounters& counters, double* pane_bound_percent = nullptr);
 
 // The sky component and its gradient with respect to the sensor's position (normal fixed), in
 // percent and percent per model unit. The sky's luminance depends on the direction only (times

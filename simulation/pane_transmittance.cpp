@@ -1,0 +1,114 @@
+#include "simulation/pane_transmittance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "materials/glass_transmittance.hpp"
+
+namespace daylit {
+
+namespace {
+
+Vec3 pane_axis(const Aperture& a) { return normalized(newell_normal(a.polygon.vertices)); }
+
+// The range of w·u over the directions of a region of convex, positively oriented loops (what the
+// visibility routine returns): at the vertices, at the interior extremum of each great arc
+// (where w's projection on the arc's plane falls inside the arc), and ±1 where ±w lies inside a
+// loop.
+std::pair<double, double> cosine_range(const SphericalRegion& region, const Vec3& w) {
+  double lo = 1, hi = -1;
+  for (const DirectionLoop& loop : region.loops) {
+    const std::size_t m = loop.size();
+    bool plus_inside = true, minus_inside = true;
+    for (std::size_t i = 0; i < m; ++i) {
+      const Vec3 a = normalized(loop[i]), b = normalized(loop[(i + 1) % m]);
+      const double at = dot(w, a);
+      lo = std::min(lo, at);
+      hi = std::max(hi, at);
+      const Vec3 normal = cross(a, b);  // the arc's plane; inside the loop: u·normal ≥ 0
+      const double side = dot(w, normal);
+      plus_inside &= side >= 0;
+      minus_inside &= side <= 0;
+      const double length = norm(normal);
+      if (length == 0) continue;
+      // w's component in the arc's plane, c = w − (w·n̂)n̂, lies on the arc when it is between a
+      // and b: on the inner sides of the planes through n̂ and a, and n̂ and b.
+      const Vec3 nh = (1 / length) * normal;
+      const Vec3 c = w - dot(w, nh) * nh;
+      if (norm(c) == 0) continue;
+      const Vec3 cu = normalized(c);
+      for (const Vec3& e : {cu, -1.0 * cu})
+        if (dot(cross(a, e), nh) >= 0 && dot(cross(e, b), nh) >= 0) {
+          lo = std::min(lo, dot(w, e));
+          hi = std::max(hi, dot(w, e));
+        }
+    }
+    if (plus_inside) hi = 1;
+    if (minus_inside) lo = -1;
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view) {
+  // The axis of the exact polynomial: the aperture's, or where the aperture's transmittance is
+  // constant, the first angle-dependent pane's.
+  std::vector<const Aperture*> factors{&scene.apertures.at(aperture)};
+  for (std::uint32_t b : view.panes) factors.push_back(&scene.apertures.at(b));
+  const auto angular = std::find_if(factors.begin(), factors.end(), [](const Aperture* a) { return !a->angular_transmittance.empty(); });
+  const Aperture& own = angular == factors.end() ? *factors[0] : **angular;
+  PanesThrough out;
+  out.combined.polygon = own.polygon;
+  double constant = 1.0;
+  const Vec3 axis = pane_axis(own);
+  std::vector<const Aperture*> parallel;  // angle-dependent factors about that axis
+  for (const Aperture* factor : factors) {
+    const Aperture& pane = *factor;
+    if (pane.angular_transmittance.empty()) {
+      constant *= pane.transmittance;
+      continue;
+    }
+    const Vec3 w = pane_axis(pane);
+    if (norm(cross(w, axis)) <= 1e-9) {
+      parallel.push_back(&pane);
+      continue;
+    }
+    // Seen through the pane, w·u has one sign over the region; the cosine of incidence is |w·u|.
+    auto [lo, hi] = cosine_range(view.region, w);
+    if (hi <= 0) std::swap(lo, hi), lo = -lo, hi = -hi;
+    lo = std::clamp(lo, 0.0, 1.0);
+    hi = std::clamp(hi, 0.0, 1.0);
+    double t_lo = 2, t_hi = -1;
+    constexpr int kSamples = 16;  // the fit need not be monotone between the extremes
+    for (int i = 0; i <= kSamples; ++i) {
+      const double t = evaluate_polynomial(pane.angular_transmittance, lo + (hi - lo) * i / kSamples);
+      t_lo = std::min(t_lo, t);
+      t_hi = std::max(t_hi, t);
+    }
+    const double mean = 0.5 * (t_lo + t_hi);
+    constant *= mean;
+    if (mean > 0) out.spread += 0.5 * (t_hi - t_lo) / mean;
+  }
+  out.combined.transmittance = constant;
+  if (parallel.size() == 1) {
+    out.combined.angular_transmittance = parallel[0]->angular_transmittance;
+    for (double& c : out.combined.angular_transmittance) c *= constant;
+    out.combined.angular_fit_error = constant * parallel[0]->angular_fit_error;
+    out.combined.transmittance = constant * evaluate_polynomial(parallel[0]->angular_transmittance, 1.0);
+  } else if (parallel.size() > 1) {
+    const TransmittancePolynomial fit = fit_transmittance([&](double mu) {
+      double t = constant;
+      for (const Aperture* a : parallel) t *= evaluate_polynomial(a->angular_transmittance, mu);
+      return t;
+    });
+    double error = fit.max_error;
+    for (const Aperture* a : parallel) error += constant * a->angular_fit_error;
+    out.combined.angular_transmittance = fit.coefficients;
+    out.combined.angular_fit_error = error;
+    out.combined.transmittance = evaluate_polynomial(fit.coefficients, 1.0);
+  }
+  return out;
+}
+
+}  // namespace daylit

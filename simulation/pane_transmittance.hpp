@@ -1,0 +1,33 @@
+#pragma once
+// The transmittance of the directions seen through more than one pane (VisibilityEngine::
+// aperture_view with AperturesAre::panes): an interior window and then the façade's, a window and
+// then a glass-modified tree. Light that passes several panes is counted once, under the last one
+// on the way (the aperture), with the transmittance of every pane it passed.
+
+#include <cstddef>
+
+#include "geometry/scene.hpp"
+#include "geometry/visibility.hpp"
+
+namespace daylit {
+
+// The panes along a view as one Aperture, so that every kernel that takes an aperture's
+// transmittance (the sky component, illuminance, the sun's disk) takes theirs, T = Π T_pane:
+//  - constant transmittances multiply;
+//  - angle-dependent ones (glass, T(μ) a polynomial in the cosine of incidence) on panes parallel
+//    to the aperture's (|a × b| ≤ 1e-9) and the aperture's own multiply as functions of the same
+//    cosine; their product is fitted again by materials' degree-≤12 fit, and the combined
+//    angular_fit_error is the sum of the factors' fit errors (scaled by the other factors, ≤ 1)
+//    plus the refit's;
+//  - an angle-dependent pane that is not parallel to the aperture's is taken as a constant over
+//    the region: the mean of its extreme transmittances over the region's directions (the
+//    extremes of its cosine over the region's loops: vertices, arcs and the pane's normal
+//    inside, and the polynomial sampled between), and `spread` is half their difference over
+//    that mean: the relative error bound of what the region gives (summed over such panes).
+struct PanesThrough {
+  Aperture combined;  // polygon: the aperture's (its normal is the polynomial's axis)
+  double spread = 0;  // relative bound of the approximated factors (0: exact)
+};
+PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view);
+
+}  // namespace daylit
