@@ -24,6 +24,9 @@ struct Aperture {
 struct Scene {
   std::vector<Polygon> occluders;
   std::vector<Aperture> apertures;
+  // Of the apertures, those known to lie between two rooms (HBJSON interior windows): panes that
+  // let the sky in only through another aperture.
+  std::size_t interior_apertures = 0;
   std::vector<std::string> notices;
   // The material definitions read with the scene, by name (Polygon::material names one): what the
   // reflected components ask of a surface (materials/surface_reflectance.hpp).

@@ -1,5 +1,6 @@
 #include "materials/scene_materials.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "geometry/text_scanner.hpp"
@@ -39,6 +40,20 @@ struct Tally {
   }
 };
 
+// Whether two polygons are the same pane: as many vertices, each of one within 1e-6 of the
+// extent of a vertex of the other (the two rooms' copies of an interior window run in opposite
+// orders).
+bool same_pane(const Polygon& a, const Polygon& b) {
+  if (a.vertices.size() != b.vertices.size()) return false;
+  double extent = 0;
+  for (const Vec3& u : a.vertices)
+    for (const Vec3& v : a.vertices) extent = std::max(extent, norm(u - v));
+  const double tolerance = 1e-6 * extent;
+  return std::all_of(a.vertices.begin(), a.vertices.end(), [&](const Vec3& u) {
+    return std::any_of(b.vertices.begin(), b.vertices.end(), [&](const Vec3& v) { return norm(u - v) <= tolerance; });
+  });
+}
+
 }  // namespace
 
 Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
@@ -52,7 +67,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
     described.push_back(m.name);
     scene.notices.push_back(text);
   };
-  Tally void_in_scene, opaque_in_apertures, sources, interior_glass;
+  Tally void_in_scene, opaque_in_apertures, sources, interior_glass, interior_copies;
+  std::vector<const Polygon*> interior_panes;
   for (const auto& entry : content.polygons) {
     const Polygon& poly = entry.polygon;
     const auto it = content.materials.find(poly.material);
@@ -60,10 +76,17 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
     const std::string type = material ? material->type : "void";
     if (type == "light" || type == "glow" || type == "illum") {
       sources.add(poly);
-    } else if (type == "glass" && entry.interior) {
-      interior_glass.add(poly);
-      scene.occluders.push_back(poly);
+    } else if (type == "glass" && entry.interior && std::any_of(interior_panes.begin(), interior_panes.end(), [&](const Polygon* q) {
+                 return same_pane(*q, poly);
+               })) {
+      // The adjacent room's copy of an interior window (an HBJSON lists it once per room): one pane.
+      interior_copies.add(poly);
     } else if (type == "glass") {
+      if (entry.interior) {
+        interior_glass.add(poly);
+        interior_panes.push_back(&poly);
+        ++scene.interior_apertures;
+      }
       const GlassOptics optics = glass_optics(*material);
       const double t = glass_transmittance(optics, 1.0);
       const TransmittancePolynomial fit = fit_glass_transmittance(optics);
@@ -130,8 +153,12 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
                                            "--sky, openings are void, glass or trans polygons in --apertures"));
   if (interior_glass.count)
     scene.notices.push_back(interior_glass.notice(
-        "glass polygon", "between two rooms (interior windows) taken as opaque occluders: the sky seen through them "
-                         "and a neighbouring room's window is left out (transmitting occluders are not computed yet)"));
+        "glass polygon", "between two rooms (interior windows) taken as panes: the sky seen through one and then "
+                         "a neighbouring room's window is counted once, with both transmittances"));
+  if (interior_copies.count)
+    scene.notices.push_back(interior_copies.notice(
+        "glass polygon", "left out as the adjacent room's copy of an interior window already read (the same "
+                         "vertices within 1e-6 of its extent): one pane"));
   return scene;
 }
 

@@ -52,9 +52,11 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
     throw Error(files.model + ": no face is an aperture: give the windows' materials or groups the role aperture or "
                 "glass in --obj-materials (or list their groups in its aperture_groups), or make their .mtl materials "
                 "transparent (d < 1); --apertures files add openings too");
-  if (in.scene.apertures.empty())
-    throw Error("no apertures: give sky openings with --apertures, glass polygons in the scene, or a --model with "
-                "apertures");
+  if (in.scene.apertures.size() == in.scene.interior_apertures)
+    throw Error("no apertures open to the sky" +
+                (in.scene.interior_apertures ? " (" + std::to_string(in.scene.interior_apertures) + " interior windows between rooms)"
+                                             : std::string()) +
+                ": give sky openings with --apertures, glass polygons in the scene, or a --model with apertures");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
   if (in.grids.empty())
     throw Error(files.model.empty() ? "no sensor grids: give --grid (or --model with sensor grids)"

@@ -13,6 +13,7 @@
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "simulation/element_transport.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/radiosity_solver.hpp"
 #include "simulation/sensor_loop.hpp"
 
@@ -97,6 +98,13 @@ SphericalRegion above_horizon(const VisibilityEngine& engine, const Vec3& x, con
   return engine.visible_region(x, n, a, c, options);
 }
 
+// The same with the directions through other panes in front of the aperture (aperture_view).
+ApertureView above_horizon_view(const VisibilityEngine& engine, const Vec3& x, const Vec3& n, std::size_t a,
+                                VisibilityCounters& c, const VisibilityOptions& options) {
+  if (n.x == 0 && n.y == 0 && n.z < 0) return {};
+  return engine.aperture_view(x, n, a, c, options);
+}
+
 // ---- The transport model ----------------------------------------------------------------------
 class Transport {
  public:
@@ -165,12 +173,8 @@ class Transport {
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
-    for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
-      const Aperture& ap = scene_.apertures[a];
-      // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
-      const SphericalRegion all = engine_.visible_region(x, n, a, c, full);
-      if (all.empty()) continue;
-      const SphericalRegion above = above_horizon(engine_, x, n, a, c, half);
+    // What is seen through aperture `ap` in `all`, of which `above` is above the horizon.
+    const auto add = [&](const Aperture& ap, const SphericalRegion& all, const SphericalRegion& above) {
       const bool glazed = !ap.angular_transmittance.empty();
       const Vec3 pane = glazed ? normalized(newell_normal(ap.polygon.vertices)) : Vec3{};
       if (with_sky && !above.empty())
@@ -185,6 +189,19 @@ class Transport {
                         : ap.transmittance * lambert(r, n);
         };
         out.ground += ground_luminance_ * (seen(all) - seen(above));
+      }
+    };
+    for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
+      // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
+      const ApertureView all = engine_.aperture_view(x, n, a, c, full);
+      if (all.empty()) continue;
+      const ApertureView above = above_horizon_view(engine_, x, n, a, c, half);
+      if (!all.region.empty()) add(scene_.apertures[a], all.region, above.region);
+      // Through other panes in front as well (pane_transmittance.hpp), pane set by pane set.
+      for (const PaneView& behind : all.behind) {
+        const auto it = std::find_if(above.behind.begin(), above.behind.end(),
+                                     [&](const PaneView& b) { return b.panes == behind.panes; });
+        add(panes_through(scene_, a, behind).combined, behind.region, it == above.behind.end() ? SphericalRegion{} : it->region);
       }
     }
     return out;
