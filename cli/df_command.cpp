@@ -98,6 +98,7 @@ int run_df(DfOptions opt) {
       if (gradient) sc.sc_gradient = mpi::gather(sc.sc_gradient, grid.sensors.size());
     }
     sc.counters = mpi::sum(sc.counters);
+    for (double b : mpi::gather_per_rank(sc.pane_bound_percent)) sc.pane_bound_percent = std::max(sc.pane_bound_percent, b);
     shards.back().time_s = mpi::gather_per_rank(shards.back().time_s.front());
     if (!mpi::root()) continue;  // the statistics, refinement and reports are rank 0's
     GridReport r;
@@ -107,6 +108,7 @@ int run_df(DfOptions opt) {
     r.df_gradient = std::move(sc.sc_gradient);
     r.statistics = grid_statistics(r.df_percent);
     r.counters = sc.counters;
+    r.pane_bound_percent = sc.pane_bound_percent;
     if (opt.refine)
       r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters);
     r.run_time_s = seconds_since(tg);
@@ -194,6 +196,7 @@ int run_df(DfOptions opt) {
                                 {"uniformity", {{"min_over_mean", s.min_over_mean}, {"min_over_median", s.min_over_median}}},
                                 {"share_at_or_above_df_percent", shares},
                                 {"run_time_s", r.run_time_s},
+                                {"pane_bound_percent", r.pane_bound_percent},
                                 {"left_out", counters_json(r.counters)}});
     if (!r.erc_percent.empty()) {
       nlohmann::json per;

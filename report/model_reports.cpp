@@ -57,6 +57,9 @@ nlohmann::json counters_json(const VisibilityCounters& c) {
       {"occluder_pieces_culled_by_boxes", c.occluders_box_culled},
       {"occluder_pieces_tested_exactly", c.occluders_tested},
       {"occluder_pieces_clipped", c.occluders_clipped},
+      {"other_panes_beyond_the_aperture", c.panes_beyond},
+      {"other_panes_in_front_of_the_aperture", c.panes_in_front},
+      {"panes_crossing_the_aperture_plane", c.panes_crossing},
   };
 }
 

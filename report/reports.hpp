@@ -21,6 +21,9 @@ struct GridReport {
   // sum, per sensor; empty for a sky-component-only run.
   std::vector<double> erc_percent, irc_percent, reflection_error_percent;
   std::vector<double> df_percent;
+  // The largest bound over the sensors of what panes taken as constant over a region may cost
+  // (SkyComponentResult::pane_bound_percent), DF points.
+  double pane_bound_percent = 0;
   // What the falsecolour image maps: df_percent in % unless `shown` is set (`daylit illuminance`
   // shows lux).
   std::vector<double> shown;
