@@ -191,10 +191,6 @@ int run_annual(AnnualCommandOptions opt) {
       r.sensors = n;
       r.reflected_share = reflected_share(r.occupied_lux, r.occupied_reflected_lux);
     }
-    if (g.result.counters.panes_in_front > 0 && !opt.quiet && mpi::root())
-      std::cerr << "notice: grid " << grid.name << ": " << g.result.counters.panes_in_front
-                << " views pass a pane in front of another aperture (an interior window, then the facade's); annual "
-                   "runs leave the light through both out (df and illuminance count it, with both transmittances)\n";
     g.sensors = sensor_metrics(g.result.illuminance, g.result.direct_sun, g.result.sensors, g.result.hours, occupied,
                                daylight_hours);
     g.metrics = grid_metrics(g.result.illuminance, g.sensors, g.result.hours, occupied, daylight_hours);

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -215,6 +216,49 @@ struct VisibilityEngine::Impl {
   bool panes = false;
   std::vector<ConvexPiece> pane_pieces;
   std::vector<Box> pane_boxes;
+  // A pane piece that crosses the plane of another aperture's piece w, cut by that plane (in
+  // double: the cut's vertices are rounded, a stated approximation): its pieces on the side of
+  // w's normal (N_W·(x − w0) ≥ 0) and on the other. Keyed by (w, pane piece index).
+  struct Halves {
+    std::vector<ConvexPiece> positive, negative;
+  };
+  std::map<std::pair<const ConvexPiece*, std::size_t>, Halves> pane_halves;
+
+  void cut_crossing_panes() {
+    for (const auto& pieces : apertures)
+      for (const ConvexPiece& w : pieces) {
+        const auto& wv = w.vertices;
+        const Vec3 normal = cross(wv[w.base_b] - wv[0], wv[w.base_c] - wv[0]);
+        for (std::size_t i = 0; i < pane_pieces.size(); ++i) {
+          const ConvexPiece& q = pane_pieces[i];
+          if (q.source == w.source) continue;
+          std::vector<int> side;
+          for (const Vec3& v : q.vertices) side.push_back(ExactSigns::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, wv[0]));
+          if (std::none_of(side.begin(), side.end(), [](int x) { return x > 0; }) ||
+              std::none_of(side.begin(), side.end(), [](int x) { return x < 0; }))
+            continue;
+          Polygon plus, minus;
+          const std::size_t m = q.vertices.size();
+          for (std::size_t k = 0; k < m; ++k) {
+            const Vec3& a = q.vertices[k];
+            const Vec3& b = q.vertices[(k + 1) % m];
+            if (side[k] >= 0) plus.vertices.push_back(a);
+            if (side[k] <= 0) minus.vertices.push_back(a);
+            const int sb = side[(k + 1) % m];
+            if (side[k] * sb < 0) {
+              const double da = dot(normal, a - wv[0]), db = dot(normal, b - wv[0]);
+              const Vec3 x = a + (da / (da - db)) * (b - a);
+              plus.vertices.push_back(x);
+              minus.vertices.push_back(x);
+            }
+          }
+          Halves h;
+          if (plus.vertices.size() >= 3) h.positive = convex_pieces(plus, q.source);
+          if (minus.vertices.size() >= 3) h.negative = convex_pieces(minus, q.source);
+          pane_halves.emplace(std::make_pair(&w, i), std::move(h));
+        }
+      }
+  }
 
   // The rank of every slot in the depth-first order that visits the right child first: the order
   // in which collect() once visited the survivors, and in which their shadows are still
@@ -422,8 +466,8 @@ struct VisibilityEngine::Impl {
   // occluders'), appended to `blockers` after them: those beyond w's plane (seen from p) as
   // blockers, pane[b] = −1, since the sky past them is their own aperture's; those on p's side
   // of it as transmitting, pane[b] the bit of their aperture in `front`. A piece that crosses
-  // w's plane is taken as in front (counted: panes_crossing), which counts the view through its
-  // part beyond twice, once here and once through its own aperture.
+  // w's plane (counted: panes_crossing) is taken as its two halves cut at that plane
+  // (cut_crossing_panes), each on its side.
   template <class Signs>
   void collect_panes(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
                      std::vector<const ConvexPiece*>& blockers, std::vector<int>& pane, std::vector<std::uint32_t>& front,
@@ -447,8 +491,21 @@ struct VisibilityEngine::Impl {
         beyond_w.push_back(&q);
         continue;
       }
-      if (far_side) ++counters.panes_crossing;
-      in_front.push_back(&q);
+      if (!far_side) {
+        in_front.push_back(&q);
+        continue;
+      }
+      // Crossing w's plane: its part on p's side transmits, its part beyond blocks.
+      ++counters.panes_crossing;
+      const auto found = pane_halves.find({&w, i});
+      if (found == pane_halves.end()) {  // the float path's signs said crossing where the exact ones do not
+        in_front.push_back(&q);
+        continue;
+      }
+      const Halves& h = found->second;
+      const bool p_positive = sh > 0;
+      for (const ConvexPiece& half : p_positive ? h.positive : h.negative) in_front.push_back(&half);
+      for (const ConvexPiece& half : p_positive ? h.negative : h.positive) beyond_w.push_back(&half);
     }
     if (beyond_w.empty() && in_front.empty()) return;
     pane.assign(blockers.size(), -1);
@@ -706,6 +763,7 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, Subtra
         for (const Vec3& v : q.vertices) b.add(v);
         impl_->pane_boxes.push_back(b);
       }
+  if (impl_->panes) impl_->cut_crossing_panes();
 }
 
 VisibilityEngine::~VisibilityEngine() = default;

@@ -1,5 +1,7 @@
 #include "simulation/annual.hpp"
 
+#include "simulation/pane_transmittance.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -18,6 +20,7 @@
 #include "materials/glass_transmittance.hpp"
 #include "simulation/annual_reflections.hpp"
 #include "simulation/illuminance.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/sensor_loop.hpp"
 #include "sky/hour_sun.hpp"
 #include "sky/sky_quadrature.hpp"
@@ -52,14 +55,16 @@ std::string clamp_kind(const std::string& line) {
 
 }  // namespace
 
-double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, const Vec3& n, const Vec3& sun,
-                      double direct_normal_lux) {
+double direct_sun_lux(const Scene& scene, const SeenRegion& seen, const Vec3& n, const Vec3& sun, double direct_normal_lux) {
   const double rho = kSunHalfAngleDeg * std::numbers::pi / 180;
-  const double visible = cap_lambert(region, sun, rho, n);
+  const double visible = cap_lambert(seen.region, sun, rho, n);
   if (visible == 0) return 0;
   const double sin_rho = std::sin(rho);
-  // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the disk's centre.
-  return aperture_transmittance(aperture, sun) * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
+  // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the
+  // disk's centre (through panes in front: each pane's at the sun).
+  const double t = seen.panes.empty() ? aperture_transmittance(scene.apertures[std::size_t(seen.aperture)], sun)
+                                      : transmittance_along(scene, std::size_t(seen.aperture), seen.panes, sun);
+  return t * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
 }
 
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients) {
@@ -68,9 +73,9 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
     const quadrature::GaussLegendreRule gl = quadrature::gauss_legendre(order);
     std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
-    for (const auto& [a, region] : coefficients.regions) {
-      const Aperture& aperture = scene.apertures[std::size_t(a)];
-      for (const DirectionLoop& loop : region.loops) {
+    for (const SeenRegion& seen : coefficients.regions) {
+      const Aperture& aperture = seen.transmitting(scene);
+      for (const DirectionLoop& loop : seen.region.loops) {
         for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
           const Vec3 A = loop[0], ab = loop[i] - A, ac = loop[i + 1] - A;
           const double det = dot(A, cross(ab, ac));
@@ -223,8 +228,8 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
   // about the sky's sun), else by adaptive cubature split at the sun.
   bool fixed = rule != nullptr && !hour.floored && c.c != 0 && rule->regions == coefficients.regions.size();
   if (fixed) {
-    for (const auto& [a, region] : coefficients.regions)
-      if (cap_lambert(region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
+    for (const SeenRegion& seen : coefficients.regions)
+      if (cap_lambert(seen.region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
   }
   if (fixed) {
     double high = 0, low = 0;
@@ -237,8 +242,9 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       fixed = false;
     }
   }
-  for (const auto& [a, region] : coefficients.regions) {
-    const Aperture& aperture = scene.apertures[std::size_t(a)];
+  for (const SeenRegion& seen : coefficients.regions) {
+    const Aperture& aperture = seen.transmitting(scene);
+    const SphericalRegion& region = seen.region;
     if (!fixed) {
       // T(μ) about the pane's normal, found once per region rather than per evaluation; an open
       // aperture's constant τ scales the result instead.
@@ -262,8 +268,12 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       out.adaptive = true;
     }
     if (hour.direct_normal_lux > 0)
-      out.sun_lux += direct_sun_lux(aperture, region, sensor.normal, hour.sun, hour.direct_normal_lux);
+      out.sun_lux += direct_sun_lux(scene, seen, sensor.normal, hour.sun, hour.direct_normal_lux);
   }
+  // A pane taken as constant over a region (pane_transmittance.hpp) costs at most its spread of
+  // what that region gives of the sky: bounded here by the spread of the whole sky (the sun takes
+  // each pane's T at the sun, exactly).
+  error += coefficients.pane_spread * std::abs(value);
   out.sky_lux = hour.scale * value;
   out.bound_lux = hour.scale * error;
   return out;
@@ -312,9 +322,9 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
     for (std::size_t h = 0; h < hours; ++h) {
       const AnnualHour& hour = sky.hours[h];
       if (!hour.sky || hour.direct_normal_lux <= 0) continue;
-      for (const auto& [a, region] : coefficients[i].regions)
-        sun[(h * n + i) * ng + std::size_t(groups.group_of_aperture[std::size_t(a)])] +=
-            float(direct_sun_lux(scene.apertures[std::size_t(a)], region, s.normal, hour.sun, hour.direct_normal_lux));
+      for (const SeenRegion& seen : coefficients[i].regions)
+        sun[(h * n + i) * ng + std::size_t(groups.group_of_aperture[std::size_t(seen.aperture)])] +=
+            float(direct_sun_lux(scene, seen, s.normal, hour.sun, hour.direct_normal_lux));
     }
   });
   // The blinds rule (blinds_rule, by its counts, which whole_grid makes the whole grid's).
@@ -370,10 +380,11 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       part.sky_direct.assign(c.sky_direct.begin() + std::ptrdiff_t(g * size), c.sky_direct.begin() + std::ptrdiff_t((g + 1) * size));
       part.lambert = {c.lambert[g]};
       part.moment_error = c.moment_error;
+      part.pane_spread = c.pane_spread;
       part.min_uz = c.min_uz;
       part.max_uz = c.max_uz;
-      for (const auto& [a, region] : c.regions)
-        if (std::size_t(groups.group_of_aperture[std::size_t(a)]) == g) part.regions.emplace_back(a, region);
+      for (const SeenRegion& seen : c.regions)
+        if (std::size_t(groups.group_of_aperture[std::size_t(seen.aperture)]) == g) part.regions.push_back(seen);
       rules.push_back(circumsolar_rule(scene, s, part));
     }
     for (std::size_t h = 0; h < hours; ++h) {

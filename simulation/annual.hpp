@@ -176,9 +176,9 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
                                  const AnnualHour& hour, const AnnualOptions& options,
                                  const CircumsolarRule* rule = nullptr);
 
-// Direct sun (lux) at a sensor through one aperture's visible region: L_s ∫_{disk ∩ A} (n·u) dσ × T(sun).
-double direct_sun_lux(const Aperture& aperture, const SphericalRegion& region, const Vec3& n, const Vec3& sun,
-                      double direct_normal_lux);
+// Direct sun (lux) at a sensor through one seen region: L_s ∫_{disk ∩ A} (n·u) dσ × T(sun), T the
+// aperture's and the panes' in front of it at the sun (transmittance_along).
+double direct_sun_lux(const Scene& scene, const SeenRegion& seen, const Vec3& n, const Vec3& sun, double direct_normal_lux);
 
 // The LM-83 rule for one hour: closed[g] when more than `share` of the sensors get ≥ threshold
 // lux from group g's direct sun alone. sun_by_group is [sensor × groups]. (annual_grid counts

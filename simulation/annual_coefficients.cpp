@@ -8,6 +8,7 @@
 #include "geometry/error.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "materials/glass_transmittance.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/sensor_loop.hpp"
 
 namespace daylit {
@@ -115,13 +116,23 @@ SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Sce
   c.lambert.assign(group_count, 0.0);
   std::vector<double> coarse(group_count * size, 0.0), coarse_lambert(group_count, 0.0);
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
-    SphericalRegion region = engine.visible_region(sensor.position, sensor.normal, a, counters);
-    if (region.empty()) continue;
+    ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
     const std::size_t g = std::size_t(groups.group_of_aperture[a]);
-    integrate_basis(region, sensor.normal, scene.apertures[a], degree, high, &c.sky_direct[g * size], c.lambert[g]);
-    integrate_basis(region, sensor.normal, scene.apertures[a], degree, low, &coarse[g * size], coarse_lambert[g]);
-    extend_uz_range(region, c.min_uz, c.max_uz);
-    c.regions.emplace_back(int(a), std::move(region));
+    const auto add = [&](SphericalRegion region, std::shared_ptr<const Aperture> through, std::vector<std::uint32_t> panes) {
+      const Aperture& aperture = through ? *through : scene.apertures[a];
+      integrate_basis(region, sensor.normal, aperture, degree, high, &c.sky_direct[g * size], c.lambert[g]);
+      integrate_basis(region, sensor.normal, aperture, degree, low, &coarse[g * size], coarse_lambert[g]);
+      extend_uz_range(region, c.min_uz, c.max_uz);
+      c.regions.push_back({int(a), std::move(region), std::move(through), std::move(panes)});
+    };
+    if (!view.region.empty()) add(std::move(view.region), nullptr, {});
+    // Through panes in front as well, with their transmittances (in a's window group: the blinds
+    // are the last pane's).
+    for (PaneView& behind : view.behind) {
+      const PanesThrough panes = panes_through(scene, a, behind);
+      c.pane_spread = std::max(c.pane_spread, panes.spread);
+      add(std::move(behind.region), std::make_shared<const Aperture>(panes.combined), std::move(behind.panes));
+    }
   }
   const double scale = c.lambert.empty() ? 0 : *std::max_element(c.lambert.begin(), c.lambert.end());
   double worst = 0;

@@ -25,6 +25,7 @@
 // one group; the coefficients are kept per group so that blinds scale a group alone.
 
 #include <string>
+#include <memory>
 #include <vector>
 
 #include "geometry/scene.hpp"
@@ -48,6 +49,17 @@ struct WindowGroups {
 };
 WindowGroups window_groups(const Scene& scene);
 
+// A region of the sky seen through an aperture: the last pane on the way, whose window group it
+// belongs to, and where panes lie in front of it, their combined transmittance with the
+// aperture's (pane_transmittance.hpp).
+struct SeenRegion {
+  int aperture = -1;  // Scene::apertures
+  SphericalRegion region;
+  std::shared_ptr<const Aperture> through{};  // null: the aperture's own transmittance
+  std::vector<std::uint32_t> panes{};         // the panes in front (for the sun: transmittance_along)
+  const Aperture& transmitting(const Scene& scene) const { return through ? *through : scene.apertures[std::size_t(aperture)]; }
+};
+
 // What one sensor sees, once.
 struct SensorCoefficients {
   // The sky seen directly through the apertures: [group][basis] (group-major).
@@ -60,8 +72,10 @@ struct SensorCoefficients {
   double min_uz = 1, max_uz = 0;
   // Largest |B_j(high) − B_j(low)| over the basis, relative to the largest lambert weight (0 if none).
   double moment_error = 0;
-  // The visible regions, kept for the circumsolar term and the sun: (aperture index, region).
-  std::vector<std::pair<int, SphericalRegion>> regions;
+  // The largest relative bound of a pane taken as constant over a region (pane_transmittance.hpp).
+  double pane_spread = 0;
+  // The visible regions, kept for the circumsolar term and the sun.
+  std::vector<SeenRegion> regions;
 };
 
 // The coefficients of every sensor of a grid (in parallel over sensors, like sky_component).

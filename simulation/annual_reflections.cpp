@@ -15,6 +15,7 @@
 #include "illumination/cap_clip.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "simulation/illuminance.hpp"
+#include "simulation/pane_transmittance.hpp"
 
 namespace daylit {
 
@@ -80,7 +81,7 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
     for (const LightView& view : node.views) {
       const std::size_t channel = view.aperture >= 0 ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
       double* row = acc.data() + channel * width;
-      const Aperture* aperture = view.aperture >= 0 ? &scene.apertures[std::size_t(view.aperture)] : nullptr;
+      const Aperture* aperture = view.transmitting(scene);
       const auto transmittance = [&](const Vec3& u) { return aperture ? aperture_transmittance(*aperture, u) : 1.0; };
       row[columns.ground_at()] += view.ground;
       if (view.above.empty()) continue;
@@ -179,9 +180,12 @@ void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const st
       if (cap.radius < kPi && angle_between(cap.centre, sun) > cap.radius + 2 * rho) continue;
       const double visible = cap_lambert(view.above, sun, rho, node.normal);
       if (visible == 0) continue;
-      const Aperture* a = view.aperture >= 0 ? &scene.apertures[std::size_t(view.aperture)] : nullptr;
+      const Aperture* a = view.transmitting(scene);
       const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
-      out[channel](Eigen::Index(k), column) += radiance * visible * (a != nullptr ? aperture_transmittance(*a, sun) : 1.0);
+      const double t = a == nullptr         ? 1.0
+                       : view.panes.empty() ? aperture_transmittance(*a, sun)
+                                            : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
+      out[channel](Eigen::Index(k), column) += radiance * visible * t;
     }
   }
 }

@@ -77,36 +77,42 @@ void add_sky(const DaylightConditions& c, const Aperture& aperture, const Spheri
 // Direct sunlight through `aperture`: the disk's radiance L_s = E_dn / (π sin²ρ) (a uniform disk of
 // angular radius ρ gives E_dn on a surface facing it: Snyder 1996, eq. 6 with the receiver on the
 // axis) times ∫ over the visible part of the disk of (n·u) dσ, in closed form (cap_clip.hpp).
-double sun_through(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n) {
+// Without the transmittance: the disk's light over the region.
+double sun_disk(const DaylightConditions& c, const SphericalRegion& region, const Vec3& n) {
   const double visible = cap_lambert(region, c.sun, c.sun_half_angle, n);
   if (visible == 0) return 0;
   const double sin_rho = std::sin(c.sun_half_angle);
-  const double radiance = c.direct_normal / (std::numbers::pi * sin_rho * sin_rho);
+  return c.direct_normal / (std::numbers::pi * sin_rho * sin_rho) * visible;
+}
+
+double sun_through(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n) {
+  const double disk = sun_disk(c, region, n);
+  if (disk == 0) return 0;
   const double t = aperture.angular_transmittance.empty()
                        ? aperture.transmittance
                        : evaluate_polynomial(aperture.angular_transmittance,
                                              std::abs(dot(pane_normal(aperture), c.sun)));
-  return t * radiance * visible;
+  return t * disk;
 }
 
 SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
                                      const DaylightConditions& c, VisibilityCounters& counters) {
   SensorIlluminance out;
-  const auto add = [&](const Aperture& aperture, const SphericalRegion& region) {
-    add_sky(c, aperture, region, sensor.normal, out);
-    if (c.has_sun()) out.sun += sun_through(c, aperture, region, sensor.normal);
-  };
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
-    if (!view.region.empty()) add(scene.apertures[a], view.region);
-    // Through panes in front as well: their transmittances with the aperture's
+    if (!view.region.empty()) {
+      add_sky(c, scene.apertures[a], view.region, sensor.normal, out);
+      if (c.has_sun()) out.sun += sun_through(c, scene.apertures[a], view.region, sensor.normal);
+    }
+    // Through panes in front as well: the sky with their transmittances and the aperture's
     // (pane_transmittance.hpp; a pane not parallel to the aperture is taken as constant over the
-    // region, and its spread is added to the sky's bound).
+    // region, and its spread is added to the sky's bound), the sun with each pane's T at the sun.
     for (const PaneView& behind : view.behind) {
       const PanesThrough panes = panes_through(scene, a, behind);
       const double sky_before = out.sky;
-      add(panes.combined, behind.region);
+      add_sky(c, panes.combined, behind.region, sensor.normal, out);
       out.sky_error += panes.spread * (out.sky - sky_before);
+      if (c.has_sun()) out.sun += transmittance_along(scene, a, behind.panes, c.sun) * sun_disk(c, behind.region, sensor.normal);
     }
   }
   out.sky *= c.zenith_luminance;

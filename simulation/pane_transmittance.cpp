@@ -111,4 +111,14 @@ PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneV
   return out;
 }
 
+double transmittance_along(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes, const Vec3& u) {
+  const auto one = [&](const Aperture& a) {
+    return a.angular_transmittance.empty() ? a.transmittance
+                                           : evaluate_polynomial(a.angular_transmittance, std::abs(dot(pane_axis(a), u)));
+  };
+  double t = one(scene.apertures.at(aperture));
+  for (std::uint32_t b : panes) t *= one(scene.apertures.at(b));
+  return t;
+}
+
 }  // namespace daylit

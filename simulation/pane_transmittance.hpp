@@ -12,7 +12,8 @@
 namespace daylit {
 
 // The panes along a view as one Aperture, so that every kernel that takes an aperture's
-// transmittance (the sky component, illuminance, the sun's disk) takes theirs, T = Π T_pane:
+// transmittance (the sky component, illuminance) takes theirs, T = Π T_pane (the polynomial's
+// axis: the aperture's, or where its T is constant, the first angle-dependent pane's):
 //  - constant transmittances multiply;
 //  - angle-dependent ones (glass, T(μ) a polynomial in the cosine of incidence) on panes parallel
 //    to the aperture's (|a × b| ≤ 1e-9) and the aperture's own multiply as functions of the same
@@ -29,5 +30,9 @@ struct PanesThrough {
   double spread = 0;  // relative bound of the approximated factors (0: exact)
 };
 PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view);
+
+// The transmittance along one direction u through the aperture and the panes, exactly: each
+// pane's T at its own cosine of incidence |w·u| (the sun's centre, where the direction is known).
+double transmittance_along(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes, const Vec3& u);
 
 }  // namespace daylit

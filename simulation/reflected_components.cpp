@@ -237,12 +237,16 @@ class Transport {
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
-    const auto add = [&](const VisibilityEngine& eng, std::size_t i, const Aperture* ap, std::int32_t index) {
-      const SphericalRegion all = eng.visible_region(x, n, i, c, full);
+    // One view: `all` seen through `ap` (nullptr: directly), `above` of it above the horizon;
+    // `through`, where panes lie in front of the aperture, their combined transmittance.
+    const auto add_view = [&](SphericalRegion all, SphericalRegion above, const Aperture* ap, std::int32_t index,
+                              std::shared_ptr<const Aperture> through, std::vector<std::uint32_t> panes) {
       if (all.empty()) return;
       LightView v;
       v.aperture = index;
-      v.above = above_horizon(eng, x, n, i, c, half);
+      v.through = std::move(through);
+      v.panes = std::move(panes);
+      v.above = std::move(above);
       const bool glazed = ap != nullptr && !ap->angular_transmittance.empty();
       const Vec3 pane = glazed ? normalized(newell_normal(ap->polygon.vertices)) : Vec3{};
       const auto seen = [&](const SphericalRegion& r) {
@@ -254,9 +258,24 @@ class Transport {
       if (v.above.empty() && v.ground == 0) return;
       out.push_back(std::move(v));
     };
-    for (std::size_t a = 0; a < engine_.aperture_count(); ++a) add(engine_, a, &scene_.apertures[a], std::int32_t(a));
+    for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
+      ApertureView all = engine_.aperture_view(x, n, a, c, full);
+      if (all.empty()) continue;
+      ApertureView above = above_horizon_view(engine_, x, n, a, c, half);
+      add_view(std::move(all.region), std::move(above.region), &scene_.apertures[a], std::int32_t(a), nullptr, {});
+      for (PaneView& behind : all.behind) {
+        auto combined = std::make_shared<const Aperture>(panes_through(scene_, a, behind).combined);
+        const auto it = std::find_if(above.behind.begin(), above.behind.end(),
+                                     [&](const PaneView& b) { return b.panes == behind.panes; });
+        add_view(std::move(behind.region), it == above.behind.end() ? SphericalRegion{} : std::move(it->region), combined.get(),
+                 std::int32_t(a), combined, behind.panes);
+      }
+    }
     if (with_direct)
-      for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) add(*sky_box_, f, nullptr, -1);
+      for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
+        SphericalRegion all = sky_box_->visible_region(x, n, f, c, full);
+        if (!all.empty()) add_view(std::move(all), above_horizon(*sky_box_, x, n, f, c, half), nullptr, -1, nullptr, {});
+      }
     return out;
   }
 

@@ -34,6 +34,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <string>
 #include <vector>
@@ -131,6 +132,13 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
 // then forms E0 for any light.
 struct LightView {
   std::int32_t aperture = -1;  // the aperture it is seen through (Scene::apertures); −1: directly
+  // Where panes lie in front of that aperture: their combined transmittance with its
+  // (pane_transmittance.hpp), to be used instead of the aperture's; null otherwise.
+  std::shared_ptr<const Aperture> through{};
+  std::vector<std::uint32_t> panes{};  // the panes in front (for the sun: transmittance_along)
+  const Aperture* transmitting(const Scene& scene) const {
+    return through ? through.get() : aperture >= 0 ? &scene.apertures[std::size_t(aperture)] : nullptr;
+  }
   SphericalRegion above;       // the directions seen above the horizon (the sky)
   double ground = 0;           // ∫ T (n·u) dσ over what is seen below the horizon (the far ground)
 };
