@@ -1,11 +1,14 @@
 #include "geometry/rad_reader.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "geometry/input_checks.hpp"
+#include "geometry/rad_tessellation.hpp"
 #include "geometry/text_scanner.hpp"
 
 namespace daylit {
@@ -148,6 +151,14 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
   // Polygons that had repeated consecutive vertices: counted, and reported once per file.
   long polygons_with_repeats = 0;
   SourceLocation first_with_repeats;
+  struct CurvedTally {
+    long count = 0;
+    std::size_t facets = 0;
+    double max_deviation = 0;
+    int segments = 0;
+    SourceLocation first;
+  };
+  std::map<std::string, CurvedTally> curved;  // by primitive type
   while (!scan.at_end()) {
     const int line = scan.peek_line();
     const SourceLocation where = scan.where(line);
@@ -238,15 +249,35 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
       Material material{id, type, std::move(strings), std::move(reals), where};
       check_material(material);
       content.materials[id] = std::move(material);
+    } else if (is_curved_primitive(type)) {
+      const Tessellation t = tessellate_primitive(type, id, std::string(modifier.text), reals, where);
+      for (const Polygon& facet : t.facets) {
+        check_polygon(facet);
+        content.polygons.push_back({facet, aperture_file});
+      }
+      auto& tally = curved[type];
+      if (tally.count++ == 0) tally.first = where;
+      tally.facets += t.facets.size();
+      tally.max_deviation = std::max(tally.max_deviation, t.max_deviation);
+      tally.segments = t.segments;
     } else if (kSkyTypes.count(type)) {
       content.skipped_modifiers.insert(id);
       content.notices.push_back(where.str() + ": skipped " + type + " " + printable(id) +
                                 " (the sky comes from --sky, not from scene files)");
     } else {
       throw input_error(where, "unsupported primitive type " + printable(type) + " (" + printable(id) +
-                                   "); daylit reads polygon geometry and the materials plastic, metal, "
-                                   "trans, glass, mirror, glow, light, illum, BSDF, aBSDF");
+                                   "); daylit reads the geometry polygon, sphere, ring, cylinder, tube, cone and cup "
+                                   "and the materials plastic, metal, trans, glass, mirror, glow, light, illum, BSDF, aBSDF");
     }
+  }
+  for (const auto& [type, tally] : curved) {
+    char deviation[64];
+    std::snprintf(deviation, sizeof deviation, "%.3g", tally.max_deviation);
+    content.notices.push_back(tally.first.str() + ": " + std::to_string(tally.count) + " " + type + (tally.count > 1 ? "s" : "") +
+                              " of " + name + " (this one first) tessellated into " + std::to_string(tally.facets) +
+                              " planar facets inscribed in the surface, " + std::to_string(tally.segments) +
+                              " segments around each circle: every facet within " + deviation +
+                              " model units of the true surface (1 % of the radius)");
   }
   if (polygons_with_repeats > 0)
     content.notices.push_back(first_with_repeats.str() + ": dropped repeated consecutive vertices from " +

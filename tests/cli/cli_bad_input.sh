@@ -144,8 +144,8 @@ expect_failure "2 million lines of garbage fail at the first" "huge_garbage.pts:
 if [ $(( $(date +%s) - start )) -gt 10 ]; then echo "FAIL garbage grid: not fast"; failures=$((failures + 1)); fi
 printf '1 2 0.85 0 0 x\n' >> big.pts
 expect_failure "bad line 2000001 of a grid" "big.pts:2000001:" --apertures window.rad --grid big.pts --out out.csv
-awk -v n=$lines 'BEGIN { for (i = 1; i < n; ++i) print "# comment line " i; print "void sphere ball 0 0 4 0 0 0 1" }' > big.rad
-expect_failure "unsupported primitive at line 2000000" "big.rad:2000000:.*sphere" --scene big.rad --apertures window.rad --grid grid.pts --out out.csv
+awk -v n=$lines 'BEGIN { for (i = 1; i < n; ++i) print "# comment line " i; print "void instance tree 1 tree.oct 0 0" }' > big.rad
+expect_failure "unsupported primitive at line 2000000" "big.rad:2000000:.*instance" --scene big.rad --apertures window.rad --grid grid.pts --out out.csv
 rm -f big.pts big.rad huge_garbage.pts
 
 # `daylit eval` on garbage: every line answered in order (one line each, the run goes on),

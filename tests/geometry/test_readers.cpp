@@ -63,7 +63,13 @@ TEST_CASE("bad scene input is an error naming file and line") {
   CHECK_THROWS_WITH(read("void polygon a 0 0 12 0 0 0 1 0 0 1 1 0.5 0 1 0\n"), Contains("not planar"));
   CHECK_THROWS_WITH(read("void polygon a 0 0 9 0 0 0 1 0 0\n"), Contains("scene.rad:1") && Contains("end of file"));
   CHECK_THROWS_WITH(read("!gensky 3 21 12\n"), Contains("scene.rad:1") && Contains("gensky"));
-  CHECK_THROWS_WITH(read("\n\nvoid sphere ball 0 0 4 0 0 0 1\n"), Contains("scene.rad:3") && Contains("sphere"));
+  CHECK_THROWS_WITH(read("\n\nvoid instance tree 1 tree.oct 0 0\n"), Contains("scene.rad:3") && Contains("instance"));
+  CHECK_THROWS_WITH(read("\n\nvoid sphere ball 0 0 3 0 0 0\n"), Contains("scene.rad:3") && Contains("sphere") && Contains("takes 4"));
+  CHECK_THROWS_WITH(read("void sphere ball 0 0 4 0 0 0 0\n"), Contains("radius must be positive"));
+  CHECK_THROWS_WITH(read("void ring r 0 0 8 0 0 0 0 0 0 0 1\n"), Contains("normal is zero"));
+  CHECK_THROWS_WITH(read("void ring r 0 0 8 0 0 0 0 0 1 2 1\n"), Contains("inner < outer"));
+  CHECK_THROWS_WITH(read("void cylinder c 0 0 7 1 1 1 1 1 1 0.5\n"), Contains("ends coincide"));
+  CHECK_THROWS_WITH(read("void cone c 0 0 8 0 0 0 0 0 1 0 0\n"), Contains("not both zero"));
   CHECK_THROWS_WITH(read("paint polygon a 0 0 9 0 0 0 1 0 0 1 1 0\n"), Contains("undefined modifier 'paint'"));
   CHECK_THROWS_WITH(read("void polygon a -1 0 9 0 0 0 1 0 0 1 1 0\n"), Contains("non-negative integer"));
   CHECK_THROWS_WITH(read("void plastic p 0 0 3 0.5 0.5 0.5\n"), Contains("wrong for its type"));
@@ -117,15 +123,23 @@ TEST_CASE("BSDF apertures take a stated uniform transmittance, or are an error s
   CHECK_THAT(in_scene.notices.at(0), Contains("left out"));
 }
 
-TEST_CASE("glass known to lie between two rooms is an occluder, said so; other glass is an aperture") {
+TEST_CASE("glass known to lie between two rooms is a pane counted as interior, once per pair; other glass is an aperture") {
   RadContent content = read("void glass g 0 0 3 .9 .9 .9\ng polygon a 0 0 9 0 0 0 1 0 0 1 1 0\n"
-                            "g polygon b 0 0 9 0 0 1 1 0 1 1 1 1\n");
+                            "g polygon b 0 0 9 0 0 1 1 0 1 1 1 1\ng polygon b2 0 0 9 1 1 1 1 0 1 0 0 1\n");
   content.polygons[1].interior = true;
+  content.polygons[2].interior = true;  // b again, from the adjacent room, its vertices reversed
   const Scene scene = assemble_scene(content);
-  CHECK(scene.apertures.size() == 1);
-  REQUIRE(scene.occluders.size() == 1);
-  CHECK(scene.occluders[0].name == "b");
-  CHECK_THAT(scene.notices.back(), Contains("scene.rad:3") && Contains("between two rooms") && Contains("left out"));
+  REQUIRE(scene.apertures.size() == 2);
+  CHECK(scene.apertures[1].polygon.name == "b");
+  CHECK(scene.interior_apertures == 1);
+  CHECK(scene.occluders.empty());
+  bool pane = false, copy = false;
+  for (const auto& n : scene.notices) {
+    pane |= n.find("scene.rad:3") != std::string::npos && n.find("between two rooms") != std::string::npos;
+    copy |= n.find("scene.rad:4") != std::string::npos && n.find("adjacent room's copy") != std::string::npos;
+  }
+  CHECK(pane);
+  CHECK(copy);
 }
 
 TEST_CASE("sensor grids are read, and bad grids are errors naming file and line") {
