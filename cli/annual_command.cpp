@@ -101,7 +101,7 @@ int run_annual(AnnualCommandOptions opt) {
   const bool show_progress = !opt.quiet && stderr_is_terminal();
   // ---- Reflected components (annual_reflections.hpp): one operator over all grids, on the asked
   // mesh and on one twice as coarse (for the estimate).
-  if (!opt.quiet) notice_unused_reflection_options(opt.reflections, opt.quiet);
+  if (!opt.quiet) notice_unused_reflection_options(opt.reflections, opt.quiet, model.scene);
   if (!opt.quiet && opt.reflections.all())
     for (const CLI::Option* o : opt.reflections.options)
       if (o->count() > 0 && (o->get_name() == "--reflection-tolerance" || o->get_name() == "--max-refinements"))

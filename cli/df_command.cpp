@@ -71,7 +71,7 @@ int run_df(DfOptions opt) {
   const std::vector<SensorGrid>& grids = model.grids;
   if (!opt.quiet) {
     for (const auto& notice : scene.notices) std::cerr << "notice: " << notice << '\n';
-    notice_unused_reflection_options(opt.reflections, opt.quiet);
+    notice_unused_reflection_options(opt.reflections, opt.quiet, scene);
   }
 
   const VisibilityEngine engine(scene, mode, opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built);

@@ -326,7 +326,7 @@ int run_illuminance(IlluminanceOptions opt) {
   if (!mpi::root()) return 0;
 
   // ---- Reflected components (--components all): one radiosity solution lit by this sky and sun.
-  notice_unused_reflection_options(opt.reflections, opt.quiet);
+  notice_unused_reflection_options(opt.reflections, opt.quiet, model.scene);
   std::optional<ReflectionResult> reflections;
   std::map<std::string, SurfaceReflectance> used_materials;
   double reflections_time_s = 0;

@@ -2,6 +2,9 @@
 
 #include <iostream>
 #include <memory>
+#include <set>
+
+#include <fmt/format.h>
 
 #include "report/progress_bar.hpp"
 
@@ -64,12 +67,33 @@ std::function<void(const std::string&, const std::string&, std::size_t, std::siz
   };
 }
 
-void notice_unused_reflection_options(const ReflectionCliOptions& o, bool quiet) {
+void notice_unused_reflection_options(const ReflectionCliOptions& o, bool quiet, const Scene& scene) {
   if (quiet || o.all()) return;
   for (const CLI::Option* option : o.options)
     if (option->count() > 0)
       std::cerr << "notice: " << option->get_name()
                 << " is not used: the reflected components are computed with --components all\n";
+  // The materials that reflect, which this run leaves out (a mirror, which --components all
+  // refuses, reflects too).
+  std::set<std::string> used;  // by an occluder
+  for (const Polygon& p : scene.occluders) used.insert(p.material);
+  std::vector<std::string> reflecting;
+  for (const auto& [name, m] : scene.materials) {
+    if (!used.count(name)) continue;
+    try {
+      const double rho = surface_reflectance(&m).reflectance;
+      if (rho > 0) reflecting.push_back(fmt::format("{} '{}' {:.3g}", m.type, name, rho));
+    } catch (const Error&) {
+      reflecting.push_back(m.type + " '" + name + "'");
+    }
+  }
+  if (reflecting.empty()) return;
+  std::string list;
+  for (std::size_t i = 0; i < reflecting.size() && i < 4; ++i) list += (i ? ", " : "") + reflecting[i];
+  if (reflecting.size() > 4) list += fmt::format(" and {} more", reflecting.size() - 4);
+  std::cerr << "notice: the reflectances of " << reflecting.size() << " material" << (reflecting.size() > 1 ? "s" : "")
+            << " (" << list << ") are not used: --components sc computes the sky seen directly (and the sun) only; "
+               "--components all adds the externally and internally reflected components\n";
 }
 
 nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std::string, SurfaceReflectance>& materials,

@@ -39,8 +39,9 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& options, co
 // The options as reflected_components() takes them (sky and light are the caller's).
 ReflectionOptions reflection_options(const ReflectionCliOptions& options);
 
-// With --components sc, a notice for each reflection option given (it would be ignored).
-void notice_unused_reflection_options(const ReflectionCliOptions& options, bool quiet);
+// With --components sc, a notice for each reflection option given (it would be ignored), and one
+// for the scene's reflecting materials, whose reflectances the sky component does not use.
+void notice_unused_reflection_options(const ReflectionCliOptions& options, bool quiet, const Scene& scene);
 
 // A progress bar per stage of the radiosity (ReflectionOptions::on_progress), drawn where `shown`.
 std::function<void(const std::string&, const std::string&, std::size_t, std::size_t)> reflection_progress_bars(

@@ -1,5 +1,8 @@
 #include "simulation/model_inputs.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/honeybee_model.hpp"
 #include "geometry/obj_material_map.hpp"
 #include "materials/obj_materials.hpp"
@@ -19,6 +22,47 @@ bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
       for (const Vec3& v : a.polygon.vertices)
         if (dot(v - s.position, s.normal) > 0) return false;
   return true;
+}
+
+// The first occluder that lies in an aperture's plane (normals parallel within 1e-9, every
+// aperture vertex within 1e-6 of the aperture's extent of the occluder's plane) and holds the
+// aperture's vertex mean inside it (even-odd, so a hole cut by seams does not count): a wall drawn
+// whole with the window on it, which hides the window from every sensor. nullptr if none.
+const Polygon* covering_occluder(const Scene& scene, const Aperture& aperture) {
+  const auto& av = aperture.polygon.vertices;
+  const Vec3 na = newell_normal(av);
+  if (norm(na) == 0) return nullptr;
+  const Vec3 u = normalized(na);
+  Vec3 lo = av[0], hi = av[0], mean{};
+  for (const Vec3& v : av) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    mean += v;
+  }
+  mean = (1.0 / double(av.size())) * mean;
+  const double tolerance = 1e-6 * norm(hi - lo);
+  // The plane's coordinates: drop the normal's largest component.
+  const int drop = std::abs(u.x) >= std::abs(u.y) && std::abs(u.x) >= std::abs(u.z) ? 0 : std::abs(u.y) >= std::abs(u.z) ? 1 : 2;
+  const auto coordinates = [drop](const Vec3& v) {
+    return drop == 0 ? std::pair{v.y, v.z} : drop == 1 ? std::pair{v.z, v.x} : std::pair{v.x, v.y};
+  };
+  for (const Polygon& o : scene.occluders) {
+    const auto& ov = o.vertices;
+    if (std::abs(dot(u, ov[0] - av[0])) > tolerance) continue;  // not in the aperture's plane: O(1) for most
+    const Vec3 no = newell_normal(ov);
+    if (norm(no) == 0 || std::abs(dot(normalized(no), u)) < 1 - 1e-9) continue;
+    const Vec3 n = normalized(no);
+    if (std::any_of(av.begin(), av.end(), [&](const Vec3& v) { return std::abs(dot(n, v - ov[0])) > tolerance; })) continue;
+    const auto [px, py] = coordinates(mean);
+    bool inside = false;
+    for (std::size_t i = 0, j = ov.size() - 1; i < ov.size(); j = i++) {
+      const auto [xi, yi] = coordinates(ov[i]);
+      const auto [xj, yj] = coordinates(ov[j]);
+      if ((yi > py) != (yj > py) && px < xi + (py - yi) * (xj - xi) / (yj - yi)) inside = !inside;
+    }
+    if (inside) return &o;
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -63,6 +107,16 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
                 : obj ? files.model + ": an OBJ model carries no sensor grids: give --grid (daylit grid --model " +
                             files.model + " lays them on its floors)"
                       : files.model + ": the model has no sensor grids: give --grid");
+  std::size_t covered = 0;
+  std::string first_covered;
+  for (const Aperture& a : in.scene.apertures)
+    if (const Polygon* wall = covering_occluder(in.scene, a); wall && covered++ == 0)
+      first_covered = a.polygon.where.str() + ": aperture '" + a.polygon.name + "' lies in the plane of occluder '" +
+                      wall->name + "' (" + wall->where.str() + ") and inside it";
+  if (covered)
+    in.scene.notices.push_back(first_covered + (covered > 1 ? " (and " + std::to_string(covered - 1) + " more apertures in walls alike)" : "") +
+                               ": the occluder hides it from every sensor, so no sky comes through. Cut the window's "
+                               "outline out of the wall (Radiance's seams), or leave the wall out there");
   for (const auto& grid : in.grids)
     if (faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "

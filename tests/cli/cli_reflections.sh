@@ -77,6 +77,15 @@ cmp -s "$work/mirror-sc.csv" "$work/sc.csv" || fail "mirror changes the sky comp
 "$daylit" df "${room[@]}" --element-size 3 --out "$work/default.csv" 2> "$work/default.txt" || fail "df on the room by default"
 head -1 "$work/default.csv" | grep -qx 'grid,index,x,y,z,dx,dy,dz,sc_percent,df_percent' || fail "the default is not SC alone"
 grep -q -- "--element-size is not used" "$work/default.txt" || fail "no notice that --element-size is not used"
+# A wall drawn whole over the window (coplanar, not cut by seams) hides it: said so, naming both.
+printf 'void plastic paper 0 0 5 0.5 0.5 0.5 0 0\npaper polygon cover 0 0 12 0 0 0 4 0 0 4 0 3 0 0 3\n' > "$work/cover.rad"
+"$daylit" df "${room[@]}" --scene "$work/cover.rad" --out "$work/cover.csv" 2> "$work/cover.txt" || fail "df with a covering wall"
+grep -q "aperture 'window' lies in the plane of occluder 'cover' (.*cover.rad:2) and inside it" "$work/cover.txt" ||
+  fail "no notice of the wall covering the window: $(cat "$work/cover.txt")"
+grep -q "lies in the plane of occluder" "$work/default.txt" && fail "a notice of a covering wall on the room, whose wall has the window cut out"
+# ... and so are the room's reflectances (never silently ignored).
+grep -q "the reflectances of 3 materials (plastic 'ceiling_mat' 0.7, plastic 'floor_mat' 0.2, plastic 'wall_mat' 0.5) are not used" \
+  "$work/default.txt" || fail "no notice that the materials' reflectances are not used: $(cat "$work/default.txt")"
 
 # `daylit illuminance --components all`: under the overcast sky at 10,000 lux diffuse horizontal,
 # ERC and IRC in lux are df's percentages times 100 (the same solution, scaled), and the total is
