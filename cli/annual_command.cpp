@@ -280,6 +280,7 @@ int run_annual(AnnualCommandOptions opt) {
   summary["site"] = site_json(*site, opt.files.site);
   summary["site"]["source"] = site_source;
   summary["sky"] = annual_sky_json(sky, opt.annual);
+  summary["sky"]["discretisation"] = annual_sky_mode_json(sky, opt.annual);
   summary["sky"]["run_time_s"] = sky_time;
   summary["blinds"] = {{"rule", "IES LM-83: a window group's blinds close in an hour when more than 2 % of the grid's sensors "
                                 "get >= 1000 lx of direct sun through it (blinds open)"},
@@ -375,6 +376,10 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--sun-patches", opt->annual.sun_patch_mf,
                   "Put the sun's disk at the centre of its Reinhart MF patch (1 = Tregenza's 145 ... 6) instead of the true "
                   "sun, to measure what a patch-based sky does to ASE (default 0: the true sun)")
+      ->check(CLI::Range(0, 6));
+  cmd->add_option("--sky-patches", opt->annual.sky_patch_mf,
+                  "Take the sky in Reinhart MF patches (1 = Tregenza's 145 ... 6), each uniform at its centre's luminance "
+                  "as patch-based tools do, integrated exactly over the visible regions (default 0: the exact sky)")
       ->check(CLI::Range(0, 6));
   add_reflection_options(*cmd, opt->reflections, "illuminance");
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");

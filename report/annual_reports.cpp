@@ -167,4 +167,16 @@ nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& option
                            {"tolerance", options.circumsolar_tolerance}}}};
 }
 
+nlohmann::json annual_sky_mode_json(const AnnualSky& sky, const AnnualOptions& options) {
+  if (options.sky_patch_mf == 0)
+    return {{"mode", "exact"}, {"how", "the smooth basis and the circumsolar term about the sun, per hour, with a bound"}};
+  return {{"mode", fmt::format("Reinhart MF:{} patches (--sky-patches)", options.sky_patch_mf)},
+          {"patches", sky.patches.size()},
+          {"how", "each patch uniform at the Perez luminance of its centre, scaled so that the patches' sum gives the hour's "
+                  "diffuse horizontal illuminance (as gendaymtx normalises); each patch integrated exactly over the visible "
+                  "regions (its azimuth wedge by two great circles, its altitude band by two caps about the zenith); glass's "
+                  "T at each part's mean direction, its spread in the bound. The discretisation itself has no bound: the "
+                  "difference from a run without --sky-patches is what the patches change"}};
+}
+
 }  // namespace daylit::cli

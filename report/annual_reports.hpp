@@ -36,5 +36,7 @@ void write_temporal_map(const std::string& path, const AnnualGridReport& g, cons
 
 nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std::string>& group_names);
 nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& options);
+// How the sky was taken: exact, or in patches (--sky-patches).
+nlohmann::json annual_sky_mode_json(const AnnualSky& sky, const AnnualOptions& options);
 
 }  // namespace daylit::cli

@@ -132,6 +132,7 @@ AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_hori
 AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualOptions& options) {
   AnnualSky out;
   out.hours.resize(weather.records.size());
+  if (options.sky_patch_mf > 0) out.patches = reinhart_patches(options.sky_patch_mf, site);
   const double lat = site.origin().latitude_deg, lon = site.origin().longitude_deg, h = site.origin().height_m;
   tbb::parallel_for(std::size_t(0), weather.records.size(), [&](std::size_t i) {
     const WeatherRecord& r = weather.records[i];
@@ -172,6 +173,7 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
       built.hour_ending = hour.hour_ending;
       built.sun_altitude_deg = hour.sun_altitude_deg;
       hour = std::move(built);
+      if (!out.patches.empty()) hour.patch_luminance = patch_luminances(out.patches, *hour.perez, hour.diffuse_horizontal_lux);
       if (options.sun_patch_mf > 0) {
         const SkyPatchCentre centre = reinhart_patch_centre(sun.position.azimuth_deg, 90 - sun.position.zenith_deg,
                                                             options.sun_patch_mf);
@@ -279,6 +281,19 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
   return out;
 }
 
+HourIlluminance patch_hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
+                                       const std::vector<double>& patch_coefficients, double patch_spread,
+                                       const AnnualHour& hour) {
+  HourIlluminance out;
+  if (!hour.sky) return out;
+  for (std::size_t p = 0; p < patch_coefficients.size(); ++p) out.sky_lux += patch_coefficients[p] * hour.patch_luminance[p];
+  out.bound_lux = (patch_spread + coefficients.pane_spread) * out.sky_lux;
+  if (hour.direct_normal_lux > 0)
+    for (const SeenRegion& seen : coefficients.regions)
+      out.sun_lux += direct_sun_lux(scene, seen, sensor.normal, hour.sun, hour.direct_normal_lux);
+  return out;
+}
+
 std::vector<std::uint8_t> blinds_rule(const std::vector<float>& sun_by_group, std::size_t sensors, std::size_t groups,
                                       double threshold_lux, double share) {
   std::vector<std::uint8_t> closed(groups, 0);
@@ -368,6 +383,7 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
     r.max_reflection_estimate_relative.assign(n, 0.0);
   }
   std::vector<double> occupied_total(n, 0.0), occupied_reflected(n, 0.0);
+  const bool patches = !sky.patches.empty();
   const auto adaptive_counts = for_each_sensor<std::size_t>(n, 4, progress, [&](std::size_t i, std::size_t& adaptive) {
     const Sensor& s = grid.sensors[i];
     const SensorCoefficients& c = coefficients[i];
@@ -385,15 +401,26 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       part.max_uz = c.max_uz;
       for (const SeenRegion& seen : c.regions)
         if (std::size_t(groups.group_of_aperture[std::size_t(seen.aperture)]) == g) part.regions.push_back(seen);
+      if (patches) continue;  // the sky by patches: no circumsolar rule
       rules.push_back(circumsolar_rule(scene, s, part));
     }
+    // With the sky in patches: each group's patch coefficients, once per sensor.
+    std::vector<std::vector<double>> patch_dc;
+    std::vector<double> patch_spread(ng, 0.0);
+    if (patches)
+      for (std::size_t g = 0; g < ng; ++g) {
+        patch_dc.emplace_back(sky.patches.size(), 0.0);
+        for (const SeenRegion& seen : parts[g].regions)
+          add_patch_coefficients(sky.patches, seen.region, s.normal, seen.transmitting(scene), patch_dc[g], patch_spread[g]);
+      }
     for (std::size_t h = 0; h < hours; ++h) {
       const AnnualHour& hour = sky.hours[h];
       if (!hour.sky) continue;
       double total = 0, bound = 0;
       for (std::size_t g = 0; g < ng; ++g) {
         const SensorCoefficients& part = parts[g];
-        const HourIlluminance e = hour_illuminance(scene, s, part, hour, options, &rules[g]);
+        const HourIlluminance e = patches ? patch_hour_illuminance(scene, s, part, patch_dc[g], patch_spread[g], hour)
+                                          : hour_illuminance(scene, s, part, hour, options, &rules[g]);
         adaptive += e.adaptive;
         const double factor = r.blinds_closed[h * ng + g] ? options.closed_blind_transmittance : 1.0;
         total += factor * (e.sky_lux + e.sun_lux);

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "simulation/annual_coefficients.hpp"
+#include "simulation/sky_patches.hpp"
 #include "sky/perez_sky.hpp"
 #include "sky/site.hpp"
 #include "sky/weather_file.hpp"
@@ -45,6 +46,11 @@ struct AnnualOptions {
   // the sky's discretisation alone does to ASE, direct sun hours and the blinds. The sky is exact
   // either way.
   int sun_patch_mf = 0;
+  // 0: the exact sky (the smooth basis and the circumsolar term about the sun). MF ≥ 1: the sky in
+  // Reinhart MF patches, each uniform at its centre's luminance and normalised as gendaymtx does,
+  // each integrated exactly over the visible regions (sky_patches.hpp): what a patch-based sky
+  // changes, without noise. The sun is --sun-patches' either way.
+  int sky_patch_mf = 0;
 };
 
 // The centre (azimuth clockwise from true north, altitude; degrees) of the Reinhart patch of
@@ -73,6 +79,7 @@ struct AnnualHour {
   std::optional<PerezSky> perez;
   SmoothSkyFit fit;
   bool floored = false;         // clamp 5 acted: the whole luminance by cubature
+  std::vector<double> patch_luminance;  // AnnualOptions::sky_patch_mf: per patch (patch_luminances)
 };
 
 // One hour from its sky (which carries its own clamps), the true sun (model frame, unit) and the
@@ -82,6 +89,7 @@ AnnualHour annual_hour(const PerezSky& sky, const Vec3& sun, double diffuse_hori
 
 struct AnnualSky {
   std::vector<AnnualHour> hours;  // one per record, in file order
+  std::vector<SkyPatch> patches;  // AnnualOptions::sky_patch_mf ≥ 1: the sky's patches
   std::size_t sky_hours = 0, floored_hours = 0, refused_hours = 0;
   std::vector<std::pair<std::string, std::size_t>> clamp_counts;  // clamp line → hours it acted in
   double max_fit_error = 0;       // the largest ε_G (1 + |e|) over the hours
@@ -171,6 +179,14 @@ struct CircumsolarRule {
   std::size_t regions = 0;
 };
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients);
+
+// The same hour with the sky in patches (AnnualOptions::sky_patch_mf): Σ_P coefficient_P L_P
+// (add_patch_coefficients over the sensor's regions, hour.patch_luminance), and the sun as
+// hour_illuminance takes it. The bound covers glass's and tilted panes' T only: the patches'
+// discretisation is what this mode is for, and has no bound.
+HourIlluminance patch_hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
+                                       const std::vector<double>& patch_coefficients, double patch_spread,
+                                       const AnnualHour& hour);
 
 HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients,
                                  const AnnualHour& hour, const AnnualOptions& options,

@@ -11,10 +11,8 @@ namespace {
 
 Vec3 pane_axis(const Aperture& a) { return normalized(newell_normal(a.polygon.vertices)); }
 
-// The range of w·u over the directions of a region of convex, positively oriented loops (what the
-// visibility routine returns): at the vertices, at the interior extremum of each great arc
-// (where w's projection on the arc's plane falls inside the arc), and ±1 where ±w lies inside a
-// loop.
+}  // namespace
+
 std::pair<double, double> cosine_range(const SphericalRegion& region, const Vec3& w) {
   double lo = 1, hi = -1;
   for (const DirectionLoop& loop : region.loops) {
@@ -48,8 +46,6 @@ std::pair<double, double> cosine_range(const SphericalRegion& region, const Vec3
   }
   return {lo, hi};
 }
-
-}  // namespace
 
 PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view) {
   // The axis of the exact polynomial: the aperture's, or where the aperture's transmittance is

@@ -5,6 +5,8 @@
 // on the way (the aperture), with the transmittance of every pane it passed.
 
 #include <cstddef>
+#include <utility>
+#include <vector>
 
 #include "geometry/scene.hpp"
 #include "geometry/visibility.hpp"
@@ -25,6 +27,12 @@ namespace daylit {
 //    extremes of its cosine over the region's loops: vertices, arcs and the pane's normal
 //    inside, and the polynomial sampled between), and `spread` is half their difference over
 //    that mean: the relative error bound of what the region gives (summed over such panes).
+// The range [min, max] of w·u (w unit) over the directions of a region of convex, positively
+// oriented loops (what the visibility routine returns): at the vertices, at the interior extremum
+// of each great arc (where w's projection on the arc's plane falls inside the arc), and ±1 where
+// ±w lies inside a loop.
+std::pair<double, double> cosine_range(const SphericalRegion& region, const Vec3& w);
+
 struct PanesThrough {
   Aperture combined;  // polygon: the aperture's (its normal is the polynomial's axis)
   double spread = 0;  // relative bound of the approximated factors (0: exact)
