@@ -13,7 +13,8 @@ struct BenchOptions {
   std::string out;
   bool quick = false;
   bool quiet = false;
-  std::string samples = "samples";  // `scenes`, `skies`, `reflections`: the folder holding office/ and hall/
+  std::string samples = "samples";  // `scenes`, `skies`, `reflections`, `annual`: the folder holding office/ and hall/
+  std::string weather = "tests/data/chicago-ohare-tmy3-jan1-3.epw";  // `annual`: an EPW or .wea
 };
 
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
@@ -35,6 +36,9 @@ int run_bench_rational(const BenchOptions& options);
 // `daylit bench reflections`: ERC + IRC by the path tracer (and, once it lands, the radiosity) on
 // closed-form cases and the samples' rooms.
 int run_bench_reflections(const BenchOptions& options);
+// `daylit bench annual`: the annual sky by the exact path, in exact patches and sampled, against a
+// tight reference run.
+int run_bench_annual(const BenchOptions& options);
 
 namespace bench {
 

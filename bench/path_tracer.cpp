@@ -440,4 +440,43 @@ std::vector<PathTracedSensor> path_trace(const Scene& scene, const std::vector<S
   return results;
 }
 
+std::vector<std::vector<double>> sampled_patch_coefficients(const Scene& scene, const std::vector<Sensor>& sensors,
+                                                            const std::vector<SkyPatch>& patches, long samples,
+                                                            std::uint64_t seed) {
+  if (samples < 1) throw Error("sampled patch coefficients: samples per sensor must be at least 1");
+  // The layout of reinhart_patches: 144 MF² + 1 patches, rows of Tregenza's counts times MF.
+  const int mf = int(std::lround(std::sqrt(double(patches.size() - 1) / 144)));
+  if (patches.size() != std::size_t(144 * mf * mf + 1)) throw Error("sampled patch coefficients: not a Reinhart layout");
+  constexpr int kTregenzaRow[7] = {30, 30, 24, 24, 18, 12, 6};
+  std::vector<std::size_t> row_start{0};
+  for (int r = 0; r < 7 * mf; ++r) row_start.push_back(row_start.back() + std::size_t(kTregenzaRow[r / mf] * mf));
+  const double row_height = 90.0 / (7 * mf + 0.5);
+  const auto patch_of = [&](const Vec3& d) {
+    const int row = int(std::floor(std::asin(std::clamp(d.z, -1.0, 1.0)) * 180 / kPi / row_height));
+    if (row >= 7 * mf) return patches.size() - 1;
+    for (std::size_t k = row_start[std::size_t(row)]; k < row_start[std::size_t(row) + 1]; ++k)
+      if (dot(patches[k].from, d) >= 0 && dot(patches[k].to, d) >= 0) return k;
+    return row_start[std::size_t(row)];  // on a boundary within rounding: either side is as good
+  };
+  const TracerScene s = build(scene);
+  long nx = std::max(1L, long(std::sqrt(double(samples))));
+  while (samples % nx != 0) --nx;
+  const long ny = samples / nx;
+  std::vector<std::vector<double>> out(sensors.size(), std::vector<double>(patches.size(), 0.0));
+  for_each_sensor<int>(sensors.size(), 1, {}, [&](std::size_t i, int&) {
+    Xoshiro256 rng(seed * 0x9e3779b97f4a7c15ULL + std::uint64_t(i));
+    const Sensor& sensor = sensors[i];
+    for (long a = 0; a < nx; ++a)
+      for (long b = 0; b < ny; ++b) {
+        const double xi1 = (double(a) + rng.uniform()) / double(nx), xi2 = (double(b) + rng.uniform()) / double(ny);
+        const Vec3 d = cosine_direction(sensor.normal, xi1, xi2);
+        if (!(d.z > 0)) continue;
+        const Walk w = walk(s, sensor.position, d, kNone);
+        if (w.surface != kNone || w.first_aperture == kNone) continue;
+        out[i][patch_of(d)] += kPi * w.transmittance / double(samples);
+      }
+  });
+  return out;
+}
+
 }  // namespace daylit

@@ -49,6 +49,7 @@
 
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
+#include "simulation/sky_patches.hpp"
 #include "sky/sky_model.hpp"
 
 namespace daylit {
@@ -80,5 +81,16 @@ struct PathTracedSensor {
 // Cost: O(samples · B · log(triangles)) per sensor.
 std::vector<PathTracedSensor> path_trace(const Scene& scene, const std::vector<Sensor>& sensors,
                                          const PathTracerOptions& options);
+
+// The sky's daylight coefficients per patch as a patch-based tool samples them (Radiance's
+// rfluxmtx into Reinhart patches with no ambient bounce, the 2-phase method's sky part): per
+// sensor, `samples` stratified cosine-distributed directions from its normal, cast by this file's
+// own ray casting; each that ends at the sky above the horizon, having crossed at least one
+// aperture and no occluder, adds π T / samples to the patch it falls in (T the product of the
+// transmittances of the apertures crossed). An unbiased estimate of ∫_{patch ∩ visible} (n·u) T dσ,
+// what add_patch_coefficients (simulation/sky_patches.hpp) computes exactly. [sensor][patch].
+std::vector<std::vector<double>> sampled_patch_coefficients(const Scene& scene, const std::vector<Sensor>& sensors,
+                                                            const std::vector<SkyPatch>& patches, long samples,
+                                                            std::uint64_t seed);
 
 }  // namespace daylit

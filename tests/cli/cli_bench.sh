@@ -2,7 +2,7 @@
 # `daylit bench kernels --quick`: writes its tables and plots, with a row for every case and
 # method; the exact kernels are exact to roundoff and the Monte Carlo error falls as N grows.
 # Then `bench scenes --quick`, `bench stiff --quick`, `bench skies --quick`, `bench rational --quick`
-# `bench reflections --quick`, `bench pairs --quick` and `bench gradient --quick` (below).
+# `bench annual --quick`, `bench reflections --quick`, `bench pairs --quick` and `bench gradient --quick` (below).
 set -u
 daylit=$1
 out=$(mktemp -d)
@@ -163,6 +163,32 @@ report=$(awk -F, 'NR > 1 {
 [ -z "$report" ] || fail "$report"
 [ "$(awk -F, 'NR > 1 && $4 ~ /^[0-9.e+-]+$/ && $4 < 1e-10' "$out/rational_luminaire_degree.csv" | wc -l)" -ge 12 ] ||
   fail "rational_luminaire_degree.csv: fewer than 12 rows within 1e-10"
+
+# `daylit bench annual --quick`: a row for every case and method; the exact path's error falls with
+# the basis degree, exact patches' with MF, the sampled coefficients' with N; exact patches beat
+# sampled ones at MF 1.
+start=$SECONDS
+root="$(dirname "$0")/../.."
+"$daylit" bench annual --quick --quiet --samples "$root/samples" --weather "$root/tests/data/chicago-ohare-tmy3-jan1-3.epw" \
+  --out "$out" || fail "bench annual: exit status $?"
+echo "bench annual --quick: $((SECONDS - start)) s"
+for f in annual_error_vs_time.csv annual_error_vs_time.png; do [ -s "$out/$f" ] || fail "$f missing or empty"; done
+csv=$out/annual_error_vs_time.csv
+expected='case,method,parameter,sensors,sky_hours,cpu_s_per_sensor,sky_cpu_s,rms_normalised_error,p95_relative_error,flipped_300lx_share,da300_difference_points'
+[ "$(head -n 1 "$csv")" = "$expected" ] || fail "header of $csv: $(head -n 1 "$csv")"
+python3 - "$csv" <<'PY' || fail "bench annual rows"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+for case in ("office", "hall"):
+    r = {(x["method"], x["parameter"]): float(x["rms_normalised_error"]) for x in rows if x["case"] == case}
+    assert r[("reference", "degree 48; circumsolar 1e-9")] == 0
+    assert r[("exact", "degree 32; circumsolar 1e-06")] < r[("exact", "degree 8; circumsolar 1e-06")], r
+    assert r[("exact", "degree 32; circumsolar 1e-06")] < 1e-6, r
+    assert r[("patches_exact", "MF:4")] < r[("patches_exact", "MF:1")], r
+    assert r[("sampled", "MF:1; 1024 rays")] < r[("sampled", "MF:1; 64 rays")], r
+    assert r[("patches_exact", "MF:1")] < r[("sampled", "MF:1; 1024 rays")], r
+    assert all(float(x["cpu_s_per_sensor"]) > 0 for x in rows if x["case"] == case)
+PY
 
 # `daylit bench reflections --quick`: a row for every case, N and B, with finite errors and times;
 # on the closed-form cases the error falls from N = 16 to 256 and stays within 5 standard errors
