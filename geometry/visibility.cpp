@@ -216,6 +216,7 @@ struct VisibilityEngine::Impl {
   bool panes = false;
   std::vector<ConvexPiece> pane_pieces;
   std::vector<Box> pane_boxes;
+  std::vector<std::size_t> pane_first;  // per aperture, its first piece in pane_pieces (and one past the last)
   // A pane piece that crosses the plane of another aperture's piece w, cut by that plane (in
   // double: the cut's vertices are rounded, a stated approximation): its pieces on the side of
   // w's normal (N_W·(x − w0) ≥ 0) and on the other. Keyed by (w, pane piece index).
@@ -252,9 +253,25 @@ struct VisibilityEngine::Impl {
               minus.vertices.push_back(x);
             }
           }
+          // A half of (nearly) no area (the pane touches the plane along an edge, beyond rounding)
+          // casts no shadow worth the name and is dropped.
+          const auto pieces_of = [&](const Polygon& half) {
+            std::vector<ConvexPiece> out;
+            if (half.vertices.size() < 3) return out;
+            Box b;
+            for (const Vec3& v : half.vertices) b.add(v);
+            const Vec3 extent = b.hi - b.lo;
+            if (!(norm(newell_normal(half.vertices)) > 1e-12 * dot(extent, extent))) return out;
+            try {
+              out = convex_pieces(half, q.source);
+            } catch (const Error&) {
+              out.clear();  // rounding made the sliver degenerate: nothing to cast
+            }
+            return out;
+          };
           Halves h;
-          if (plus.vertices.size() >= 3) h.positive = convex_pieces(plus, q.source);
-          if (minus.vertices.size() >= 3) h.negative = convex_pieces(minus, q.source);
+          h.positive = pieces_of(plus);
+          h.negative = pieces_of(minus);
           pane_halves.emplace(std::make_pair(&w, i), std::move(h));
         }
       }
@@ -463,11 +480,12 @@ struct VisibilityEngine::Impl {
   }
 
   // The other apertures' pieces that may meet the view through w from p (the same culling as
-  // occluders'), appended to `blockers` after them: those beyond w's plane (seen from p) as
-  // blockers, pane[b] = −1, since the sky past them is their own aperture's; those on p's side
-  // of it as transmitting, pane[b] the bit of their aperture in `front`. A piece that crosses
-  // w's plane (counted: panes_crossing) is taken as its two halves cut at that plane
-  // (cut_crossing_panes), each on its side.
+  // occluders'): those on p's side of w's plane are appended to `blockers` as transmitting,
+  // pane[b] the bit of their aperture in `front`; those beyond it are only counted (panes_beyond):
+  // the view through w is not cut at them, and the sky past them, which w's view counts, is taken
+  // back by their own views (PaneView::last), where w is in front. A piece that crosses w's plane
+  // (counted: panes_crossing) is taken as its two halves cut at that plane (cut_crossing_panes):
+  // the half on p's side transmits.
   template <class Signs>
   void collect_panes(const Vec3& p, const Vec3& n, const ConvexPiece& w, int sh, const VisibilityOptions& options,
                      std::vector<const ConvexPiece*>& blockers, std::vector<int>& pane, std::vector<std::uint32_t>& front,
@@ -507,12 +525,9 @@ struct VisibilityEngine::Impl {
       for (const ConvexPiece& half : p_positive ? h.positive : h.negative) in_front.push_back(&half);
       for (const ConvexPiece& half : p_positive ? h.negative : h.positive) beyond_w.push_back(&half);
     }
-    if (beyond_w.empty() && in_front.empty()) return;
+    counters.panes_beyond += beyond_w.size();
+    if (in_front.empty()) return;
     pane.assign(blockers.size(), -1);
-    for (const ConvexPiece* q : beyond_w) {
-      blockers.push_back(q);
-      pane.push_back(-1);
-    }
     for (const ConvexPiece* q : in_front) {
       auto it = std::find(front.begin(), front.end(), std::uint32_t(q->source));
       if (it == front.end()) {
@@ -524,8 +539,37 @@ struct VisibilityEngine::Impl {
       blockers.push_back(q);
       pane.push_back(int(it - front.begin()));
     }
-    counters.panes_beyond += beyond_w.size();
     counters.panes_in_front += in_front.size();
+  }
+
+  // Of the panes `through` (in front of aperture piece w from p, all crossed by the directions of
+  // one region), the one nearest w: every other lies on p's side of its plane. Exact signs of
+  // the panes' vertices; for panes that cross each other's planes (cut only against apertures'
+  // planes, not each other's) the one with the fewest others behind it.
+  template <class Signs>
+  std::uint32_t last_pane(const Vec3& p, const std::vector<std::uint32_t>& through) const {
+    if (through.size() == 1) return through[0];
+    std::uint32_t best = through[0];
+    int best_in_front = -1;
+    for (std::uint32_t b : through) {
+      const ConvexPiece& plane = pane_pieces[pane_first[b]];
+      const auto& bv = plane.vertices;
+      const int sp = Signs::normal_dot_diff(bv[0], bv[plane.base_b], bv[plane.base_c], p, bv[0]);
+      int in_front = 0;
+      for (std::uint32_t c : through) {
+        if (c == b) continue;
+        bool near = true;
+        for (std::size_t k = pane_first[c]; k < pane_first[c + 1] && near; ++k)
+          for (const Vec3& v : pane_pieces[k].vertices)
+            if (sp * Signs::normal_dot_diff(bv[0], bv[plane.base_b], bv[plane.base_c], v, bv[0]) < 0) {
+              near = false;
+              break;
+            }
+        in_front += near;
+      }
+      if (in_front > best_in_front) best = b, best_in_front = in_front;
+    }
+    return best;
   }
 
   // The occluder pieces that may hide part of w from p, in the order of subtraction (rank). The
@@ -717,14 +761,15 @@ struct VisibilityEngine::Impl {
       for (std::size_t bit = 0; bit < front.size(); ++bit)
         if (tag >> bit & 1) through.push_back(front[bit]);
       std::sort(through.begin(), through.end());
-      add_behind(view, std::move(through), std::move(part));
+      const std::uint32_t last = last_pane<Signs>(p, through);
+      add_behind(view, std::move(through), std::move(part), last);
     }
   }
 
-  static void add_behind(ApertureView& view, std::vector<std::uint32_t> through, SphericalRegion part) {
+  static void add_behind(ApertureView& view, std::vector<std::uint32_t> through, SphericalRegion part, std::uint32_t last) {
     auto it = std::find_if(view.behind.begin(), view.behind.end(), [&](const PaneView& b) { return b.panes == through; });
     if (it == view.behind.end()) {
-      view.behind.push_back({std::move(part), std::move(through)});
+      view.behind.push_back({std::move(part), std::move(through), last});
       return;
     }
     for (auto& loop : part.loops) it->region.loops.push_back(std::move(loop));
@@ -756,14 +801,19 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, Subtra
   }
   impl_->panes = apertures == AperturesAre::panes && scene.apertures.size() > 1;
   if (impl_->panes)
-    for (const auto& pieces : impl_->apertures)
+    for (const auto& pieces : impl_->apertures) {
+      impl_->pane_first.push_back(impl_->pane_pieces.size());
       for (const ConvexPiece& q : pieces) {
         impl_->pane_pieces.push_back(q);
         Box b;
         for (const Vec3& v : q.vertices) b.add(v);
         impl_->pane_boxes.push_back(b);
       }
-  if (impl_->panes) impl_->cut_crossing_panes();
+    }
+  if (impl_->panes) {
+    impl_->pane_first.push_back(impl_->pane_pieces.size());
+    impl_->cut_crossing_panes();
+  }
 }
 
 VisibilityEngine::~VisibilityEngine() = default;
@@ -797,7 +847,7 @@ ApertureView VisibilityEngine::aperture_view(const Vec3& p, const Vec3& n, std::
       impl_->evaluate<FloatSigns, double>(p, n, piece, options, part, counters);
     for (auto& loop : part.region.loops) view.region.loops.push_back(std::move(loop));
     for (auto& sources : part.region.edge_sources) view.region.edge_sources.push_back(std::move(sources));
-    for (auto& b : part.behind) Impl::add_behind(view, std::move(b.panes), std::move(b.region));
+    for (auto& b : part.behind) Impl::add_behind(view, std::move(b.panes), std::move(b.region), b.last);
   }
   return view;
 }

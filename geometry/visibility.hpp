@@ -91,12 +91,11 @@ struct VisibilityOptions {
 
 // What a scene's apertures are to each other.
 enum class AperturesAre {
-  // Sky openings, each open or filled with a transmitting pane (glass, trans, BSDF): the view
-  // through aperture A ends at the sky only where nothing lies beyond A, neither an occluder nor
-  // another pane (the sky beyond that pane is its own aperture's), and where other panes lie
-  // between the receiver and A it is seen through them as well (ApertureView::behind): light that
-  // passes several panes (an interior window, then the façade; a window, then a glass-modified
-  // tree) is counted once, under the last pane, with every pane on the way named.
+  // Sky openings, each open or filled with a transmitting pane (glass, trans, BSDF): where other
+  // panes lie between the receiver and aperture A, the view through A is seen through them as
+  // well (ApertureView::behind), and the counts of PaneView make light that passes several panes
+  // (an interior window, then the façade; a window, then a glass-modified tree) count once, with
+  // the transmittance of every pane on the way.
   panes,
   // Luminaires that do not see each other (the surfaces of a radiosity solution, each queried
   // alone): none hides or filters another.
@@ -104,9 +103,18 @@ enum class AperturesAre {
 };
 
 // Directions through aperture A that also pass other apertures' panes between the receiver and A.
+// The engine does not cut a view at the panes beyond it (that would clip every far pane's shadow
+// into every view, at great cost where panes sit in holes of walls): each pane's view counts the
+// sky past it, and the directions that go on through further panes are counted again by the
+// last pane's view, with every pane on the way. So what a region here gives is
+//     E(A and `panes`) − E(`last` and the other panes),
+// the second the count that `last`, the pane of `panes` nearest A, made of the same directions.
+// Along a ray through panes P1 … Pk (from the receiver) the views count T1, T1T2 − T1, …,
+// T1⋯Tk − T1⋯Tk−1: in all T1⋯Tk, each direction once.
 struct PaneView {
   SphericalRegion region;
   std::vector<std::uint32_t> panes;  // those other apertures (Scene::apertures indices), ascending
+  std::uint32_t last = 0;            // of them, the one nearest A (all others lie on the receiver's side of it)
 };
 struct ApertureView {
   SphericalRegion region;        // through A alone: what visible_region returns
@@ -134,7 +142,7 @@ class VisibilityEngine {
   // The directions from receiver p (normal n, unit) that pass through aperture `aperture`, lie in
   // front of the receiver's tangent plane and above the horizontal plane through p, and meet no
   // occluder on the way (in front of or beyond the aperture), nor, with AperturesAre::panes, any
-  // other aperture's pane. Returned as positively oriented loops (a partition of the region);
+  // other aperture's pane in front of it. Returned as positively oriented loops (a partition of the region);
   // empty when nothing is visible. Thread-safe.
   SphericalRegion visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,
                                  VisibilityCounters& counters) const;

@@ -62,9 +62,9 @@ double direct_sun_lux(const Scene& scene, const SeenRegion& seen, const Vec3& n,
   const double sin_rho = std::sin(rho);
   // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the
   // disk's centre (through panes in front: each pane's at the sun).
-  const double t = seen.panes.empty() ? aperture_transmittance(scene.apertures[std::size_t(seen.aperture)], sun)
-                                      : transmittance_along(scene, std::size_t(seen.aperture), seen.panes, sun);
-  return t * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
+  const double t = seen.panes.empty() && !seen.through ? aperture_transmittance(scene.apertures[std::size_t(seen.aperture)], sun)
+                                                       : transmittance_along(scene, std::size_t(seen.aperture), seen.panes, sun);
+  return seen.sign * t * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
 }
 
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients) {
@@ -88,7 +88,8 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
               const Vec3 point = A + (x * (1 - y)) * ab + (x * y) * ac;
               const double r = norm(point);
               const Vec3 u = (1 / r) * point;
-              nodes.push_back({u, wx * wy * x * det / (r * r * r) * dot(sensor.normal, u) * aperture_transmittance(aperture, u)});
+              nodes.push_back({u, seen.sign * wx * wy * x * det / (r * r * r) * dot(sensor.normal, u) *
+                                      aperture_transmittance(aperture, u)});
             }
           }
         }
@@ -265,7 +266,7 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
           : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
                                                  options.circumsolar_tolerance, transmittance)
                      : QuadratureResult{0, 0, 0};
-      value += scale * q.value;
+      value += seen.sign * scale * q.value;
       error += scale * q.error_estimate;
       out.adaptive = true;
     }
@@ -411,7 +412,8 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       for (std::size_t g = 0; g < ng; ++g) {
         patch_dc.emplace_back(sky.patches.size(), 0.0);
         for (const SeenRegion& seen : parts[g].regions)
-          add_patch_coefficients(sky.patches, seen.region, s.normal, seen.transmitting(scene), patch_dc[g], patch_spread[g]);
+          add_patch_coefficients(sky.patches, seen.region, s.normal, seen.transmitting(scene), patch_dc[g], patch_spread[g],
+                                 seen.sign);
       }
     for (std::size_t h = 0; h < hours; ++h) {
       const AnnualHour& hour = sky.hours[h];

@@ -117,22 +117,34 @@ SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Sce
   std::vector<double> coarse(group_count * size, 0.0), coarse_lambert(group_count, 0.0);
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
-    const std::size_t g = std::size_t(groups.group_of_aperture[a]);
-    const auto add = [&](SphericalRegion region, std::shared_ptr<const Aperture> through, std::vector<std::uint32_t> panes) {
-      const Aperture& aperture = through ? *through : scene.apertures[a];
-      integrate_basis(region, sensor.normal, aperture, degree, high, &c.sky_direct[g * size], c.lambert[g]);
-      integrate_basis(region, sensor.normal, aperture, degree, low, &coarse[g * size], coarse_lambert[g]);
+    // A region seen through `own` (its window group) with `through`'s transmittance, `sign`
+    // −1 for a count taken back (PaneView).
+    const auto add = [&](std::size_t own, SphericalRegion region, std::shared_ptr<const Aperture> through,
+                         std::vector<std::uint32_t> panes, double sign) {
+      const Aperture& aperture = through ? *through : scene.apertures[own];
+      const std::size_t gg = std::size_t(groups.group_of_aperture[own]);
+      std::vector<double> moments(size, 0.0), moments_low(size, 0.0);
+      double l = 0, l_low = 0;
+      integrate_basis(region, sensor.normal, aperture, degree, high, moments.data(), l);
+      integrate_basis(region, sensor.normal, aperture, degree, low, moments_low.data(), l_low);
+      for (std::size_t j = 0; j < size; ++j) {
+        c.sky_direct[gg * size + j] += sign * moments[j];
+        coarse[gg * size + j] += sign * moments_low[j];
+      }
+      c.lambert[gg] += sign * l;
+      coarse_lambert[gg] += sign * l_low;
       extend_uz_range(region, c.min_uz, c.max_uz);
-      c.regions.push_back({int(a), std::move(region), std::move(through), std::move(panes)});
+      c.regions.push_back({int(own), std::move(region), std::move(through), std::move(panes), sign});
     };
-    if (!view.region.empty()) add(std::move(view.region), nullptr, {});
-    // Through panes in front as well, with their transmittances (in a's window group: the blinds
-    // are the last pane's).
-    for (PaneView& behind : view.behind) {
-      const PanesThrough panes = panes_through(scene, a, behind);
-      c.pane_spread = std::max(c.pane_spread, panes.spread);
-      add(std::move(behind.region), std::make_shared<const Aperture>(panes.combined), std::move(behind.panes));
-    }
+    if (!view.region.empty()) add(a, std::move(view.region), nullptr, {}, 1.0);
+    // Through panes in front as well, with their transmittances, each term in its own pane's
+    // window group (the count taken back is in the group that made it).
+    for (PaneView& behind : view.behind)
+      for (PaneTerm& term : pane_terms(scene, a, behind)) {
+        c.pane_spread = std::max(c.pane_spread, term.transmittance.spread);
+        add(term.aperture, behind.region, std::make_shared<const Aperture>(std::move(term.transmittance.combined)),
+            std::move(term.panes), term.sign);
+      }
   }
   const double scale = c.lambert.empty() ? 0 : *std::max_element(c.lambert.begin(), c.lambert.end());
   double worst = 0;

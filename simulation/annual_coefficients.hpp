@@ -57,6 +57,7 @@ struct SeenRegion {
   SphericalRegion region;
   std::shared_ptr<const Aperture> through{};  // null: the aperture's own transmittance
   std::vector<std::uint32_t> panes{};         // the panes in front (for the sun: transmittance_along)
+  double sign = 1;                            // −1: a count taken back (PaneView), subtracted
   const Aperture& transmitting(const Scene& scene) const { return through ? *through : scene.apertures[std::size_t(aperture)]; }
 };
 

@@ -82,8 +82,9 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
       const std::size_t channel = view.aperture >= 0 ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
       double* row = acc.data() + channel * width;
       const Aperture* aperture = view.transmitting(scene);
-      const auto transmittance = [&](const Vec3& u) { return aperture ? aperture_transmittance(*aperture, u) : 1.0; };
-      row[columns.ground_at()] += view.ground;
+      // A count taken back (LightView::sign) enters negated.
+      const auto transmittance = [&](const Vec3& u) { return view.sign * (aperture ? aperture_transmittance(*aperture, u) : 1.0); };
+      row[columns.ground_at()] += view.sign * view.ground;
       if (view.above.empty()) continue;
       // The sky: the hat functions of both grids.
       for (const DirectionLoop& loop : view.above.loops)
@@ -185,7 +186,7 @@ void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const st
       const double t = a == nullptr         ? 1.0
                        : view.panes.empty() ? aperture_transmittance(*a, sun)
                                             : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
-      out[channel](Eigen::Index(k), column) += radiance * visible * t;
+      out[channel](Eigen::Index(k), column) += view.sign * radiance * visible * t;
     }
   }
 }

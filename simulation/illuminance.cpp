@@ -108,11 +108,16 @@ SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene
     // (pane_transmittance.hpp; a pane not parallel to the aperture is taken as constant over the
     // region, and its spread is added to the sky's bound), the sun with each pane's T at the sun.
     for (const PaneView& behind : view.behind) {
-      const PanesThrough panes = panes_through(scene, a, behind);
-      const double sky_before = out.sky;
-      add_sky(c, panes.combined, behind.region, sensor.normal, out);
-      out.sky_error += panes.spread * (out.sky - sky_before);
-      if (c.has_sun()) out.sun += transmittance_along(scene, a, behind.panes, c.sun) * sun_disk(c, behind.region, sensor.normal);
+      const double disk = c.has_sun() ? sun_disk(c, behind.region, sensor.normal) : 0.0;
+      for (const PaneTerm& term : pane_terms(scene, a, behind)) {
+        SensorIlluminance part;
+        add_sky(c, term.transmittance.combined, behind.region, sensor.normal, part);
+        out.sky += term.sign * part.sky;
+        out.sky_error += part.sky_error + term.transmittance.spread * std::abs(part.sky);
+        out.evaluations += part.evaluations;
+        out.regions_by_quadrature += part.regions_by_quadrature;
+        if (disk > 0) out.sun += term.sign * transmittance_along(scene, term.aperture, term.panes, c.sun) * disk;
+      }
     }
   }
   out.sky *= c.zenith_luminance;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 
 #include "materials/glass_transmittance.hpp"
 
@@ -10,6 +12,29 @@ namespace daylit {
 namespace {
 
 Vec3 pane_axis(const Aperture& a) { return normalized(newell_normal(a.polygon.vertices)); }
+
+// The refit of constant × Π T_a(μ) (materials' fit_transmittance), the same for every region
+// seen through the same panes: kept, so that a sensor's every view does not repeat the least
+// squares (a pure function of the polynomials; the cache is shared by the threads).
+TransmittancePolynomial product_fit(double constant, const std::vector<const Aperture*>& parallel) {
+  std::vector<std::vector<double>> key{{constant}};
+  for (const Aperture* a : parallel) key.push_back(a->angular_transmittance);
+  std::sort(key.begin() + 1, key.end());
+  static std::mutex mutex;
+  static std::map<std::vector<std::vector<double>>, TransmittancePolynomial> cache;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  const TransmittancePolynomial fit = fit_transmittance([&](double mu) {
+    double t = constant;
+    for (const Aperture* a : parallel) t *= evaluate_polynomial(a->angular_transmittance, mu);
+    return t;
+  });
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace(std::move(key), fit);
+  return fit;
+}
 
 }  // namespace
 
@@ -47,11 +72,22 @@ std::pair<double, double> cosine_range(const SphericalRegion& region, const Vec3
   return {lo, hi};
 }
 
-PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view) {
+std::vector<PaneTerm> pane_terms(const Scene& scene, std::size_t aperture, const PaneView& view) {
+  std::vector<PaneTerm> terms;
+  terms.push_back({panes_through(scene, aperture, view.region, view.panes), 1.0, aperture, view.panes});
+  std::vector<std::uint32_t> others;
+  for (std::uint32_t b : view.panes)
+    if (b != view.last) others.push_back(b);
+  terms.push_back({panes_through(scene, view.last, view.region, others), -1.0, view.last, others});
+  return terms;
+}
+
+PanesThrough panes_through(const Scene& scene, std::size_t aperture, const SphericalRegion& region,
+                           const std::vector<std::uint32_t>& panes) {
   // The axis of the exact polynomial: the aperture's, or where the aperture's transmittance is
   // constant, the first angle-dependent pane's.
   std::vector<const Aperture*> factors{&scene.apertures.at(aperture)};
-  for (std::uint32_t b : view.panes) factors.push_back(&scene.apertures.at(b));
+  for (std::uint32_t b : panes) factors.push_back(&scene.apertures.at(b));
   const auto angular = std::find_if(factors.begin(), factors.end(), [](const Aperture* a) { return !a->angular_transmittance.empty(); });
   const Aperture& own = angular == factors.end() ? *factors[0] : **angular;
   PanesThrough out;
@@ -71,7 +107,7 @@ PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneV
       continue;
     }
     // Seen through the pane, w·u has one sign over the region; the cosine of incidence is |w·u|.
-    auto [lo, hi] = cosine_range(view.region, w);
+    auto [lo, hi] = cosine_range(region, w);
     if (hi <= 0) std::swap(lo, hi), lo = -lo, hi = -hi;
     lo = std::clamp(lo, 0.0, 1.0);
     hi = std::clamp(hi, 0.0, 1.0);
@@ -93,11 +129,7 @@ PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneV
     out.combined.angular_fit_error = constant * parallel[0]->angular_fit_error;
     out.combined.transmittance = constant * evaluate_polynomial(parallel[0]->angular_transmittance, 1.0);
   } else if (parallel.size() > 1) {
-    const TransmittancePolynomial fit = fit_transmittance([&](double mu) {
-      double t = constant;
-      for (const Aperture* a : parallel) t *= evaluate_polynomial(a->angular_transmittance, mu);
-      return t;
-    });
+    const TransmittancePolynomial fit = product_fit(constant, parallel);
     double error = fit.max_error;
     for (const Aperture* a : parallel) error += constant * a->angular_fit_error;
     out.combined.angular_transmittance = fit.coefficients;

@@ -37,7 +37,20 @@ struct PanesThrough {
   Aperture combined;  // polygon: the aperture's (its normal is the polynomial's axis)
   double spread = 0;  // relative bound of the approximated factors (0: exact)
 };
-PanesThrough panes_through(const Scene& scene, std::size_t aperture, const PaneView& view);
+PanesThrough panes_through(const Scene& scene, std::size_t aperture, const SphericalRegion& region,
+                           const std::vector<std::uint32_t>& panes);
+
+// What a PaneView gives, as two terms to integrate over its region with their signs: +1 the
+// aperture with all the panes, −1 the view's `last` pane with the others (the count that pane's
+// own view made of these directions: PaneView). `aperture` and `panes` name each term's panes for
+// what is evaluated along one direction (the sun: transmittance_along).
+struct PaneTerm {
+  PanesThrough transmittance;
+  double sign = 1;
+  std::size_t aperture = 0;
+  std::vector<std::uint32_t> panes;
+};
+std::vector<PaneTerm> pane_terms(const Scene& scene, std::size_t aperture, const PaneView& view);
 
 // The transmittance along one direction u through the aperture and the panes, exactly: each
 // pane's T at its own cosine of incidence |w·u| (the sun's centre, where the direction is known).

@@ -174,7 +174,8 @@ class Transport {
     full.clip_to_horizon = false;
     full.excluded_occluder = half.excluded_occluder = own;
     // What is seen through aperture `ap` in `all`, of which `above` is above the horizon.
-    const auto add = [&](const Aperture& ap, const SphericalRegion& all, const SphericalRegion& above) {
+    const auto add = [&](const Aperture& ap, const SphericalRegion& all, const SphericalRegion& above, double sign = 1) {
+      const ThroughApertures before = out;
       const bool glazed = !ap.angular_transmittance.empty();
       const Vec3 pane = glazed ? normalized(newell_normal(ap.polygon.vertices)) : Vec3{};
       if (with_sky && !above.empty())
@@ -190,6 +191,10 @@ class Transport {
         };
         out.ground += ground_luminance_ * (seen(all) - seen(above));
       }
+      if (sign != 1) {  // a count taken back (PaneView)
+        out.sky = before.sky + sign * (out.sky - before.sky);
+        out.ground = before.ground + sign * (out.ground - before.ground);
+      }
     };
     for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
       // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
@@ -201,7 +206,8 @@ class Transport {
       for (const PaneView& behind : all.behind) {
         const auto it = std::find_if(above.behind.begin(), above.behind.end(),
                                      [&](const PaneView& b) { return b.panes == behind.panes; });
-        add(panes_through(scene_, a, behind).combined, behind.region, it == above.behind.end() ? SphericalRegion{} : it->region);
+        for (const PaneTerm& term : pane_terms(scene_, a, behind))
+          add(term.transmittance.combined, behind.region, it == above.behind.end() ? SphericalRegion{} : it->region, term.sign);
       }
     }
     return out;
@@ -240,12 +246,13 @@ class Transport {
     // One view: `all` seen through `ap` (nullptr: directly), `above` of it above the horizon;
     // `through`, where panes lie in front of the aperture, their combined transmittance.
     const auto add_view = [&](SphericalRegion all, SphericalRegion above, const Aperture* ap, std::int32_t index,
-                              std::shared_ptr<const Aperture> through, std::vector<std::uint32_t> panes) {
+                              std::shared_ptr<const Aperture> through, std::vector<std::uint32_t> panes, double sign) {
       if (all.empty()) return;
       LightView v;
       v.aperture = index;
       v.through = std::move(through);
       v.panes = std::move(panes);
+      v.sign = sign;
       v.above = std::move(above);
       const bool glazed = ap != nullptr && !ap->angular_transmittance.empty();
       const Vec3 pane = glazed ? normalized(newell_normal(ap->polygon.vertices)) : Vec3{};
@@ -262,19 +269,22 @@ class Transport {
       ApertureView all = engine_.aperture_view(x, n, a, c, full);
       if (all.empty()) continue;
       ApertureView above = above_horizon_view(engine_, x, n, a, c, half);
-      add_view(std::move(all.region), std::move(above.region), &scene_.apertures[a], std::int32_t(a), nullptr, {});
+      add_view(std::move(all.region), std::move(above.region), &scene_.apertures[a], std::int32_t(a), nullptr, {}, 1.0);
       for (PaneView& behind : all.behind) {
-        auto combined = std::make_shared<const Aperture>(panes_through(scene_, a, behind).combined);
         const auto it = std::find_if(above.behind.begin(), above.behind.end(),
                                      [&](const PaneView& b) { return b.panes == behind.panes; });
-        add_view(std::move(behind.region), it == above.behind.end() ? SphericalRegion{} : std::move(it->region), combined.get(),
-                 std::int32_t(a), combined, behind.panes);
+        for (PaneTerm& term : pane_terms(scene_, a, behind)) {
+          auto combined = std::make_shared<const Aperture>(std::move(term.transmittance.combined));
+          // The term's own pane (its aperture) keeps the window group of the light: the last pane's.
+          add_view(behind.region, it == above.behind.end() ? SphericalRegion{} : it->region, combined.get(),
+                   std::int32_t(term.aperture), combined, std::move(term.panes), term.sign);
+        }
       }
     }
     if (with_direct)
       for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
         SphericalRegion all = sky_box_->visible_region(x, n, f, c, full);
-        if (!all.empty()) add_view(std::move(all), above_horizon(*sky_box_, x, n, f, c, half), nullptr, -1, nullptr, {});
+        if (!all.empty()) add_view(std::move(all), above_horizon(*sky_box_, x, n, f, c, half), nullptr, -1, nullptr, {}, 1.0);
       }
     return out;
   }
@@ -956,7 +966,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     const auto locals = for_each_sensor<VisibilityCounters>(m, 4, grid_progress, [&](std::size_t s, VisibilityCounters& counters) {
       const Sensor& sensor = grid->sensors[s];
       for (const LightView& v : t.views(sensor.position, sensor.normal, VisibilityOptions::kNoOccluder, false, counters))
-        ground[s * scene.apertures.size() + std::size_t(v.aperture)] += v.ground;
+        ground[s * scene.apertures.size() + std::size_t(v.aperture)] += v.sign * v.ground;
       if (n == 0) return;
       t.transport(mesh, sensor.position, sensor.normal, std::size_t(-1), counters,
                   [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) {

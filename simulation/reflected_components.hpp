@@ -136,6 +136,7 @@ struct LightView {
   // (pane_transmittance.hpp), to be used instead of the aperture's; null otherwise.
   std::shared_ptr<const Aperture> through{};
   std::vector<std::uint32_t> panes{};  // the panes in front (for the sun: transmittance_along)
+  double sign = 1;                     // −1: a count taken back (PaneView), to be subtracted
   const Aperture* transmitting(const Scene& scene) const {
     return through ? through.get() : aperture >= 0 ? &scene.apertures[std::size_t(aperture)] : nullptr;
   }

@@ -41,7 +41,9 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
     L.alpha = 1.0 / 3;
     L.beta = {0, 0, 2.0 / 3};
   }
-  const auto add = [&](const SphericalRegion& region, const Aperture& aperture) {
+  const auto add = [&](const SphericalRegion& region, const Aperture& aperture, double sign = 1) {
+    const double irradiance_before = irradiance;
+    const Vec3 gradient_before = gradient;
     if (aperture.angular_transmittance.empty()) {
       irradiance += aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
       L.c = {1};
@@ -58,11 +60,16 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
       L.c = aperture.angular_transmittance;
       gradient += directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
     }
+    if (sign != 1) {  // a count taken back (PaneView): the region's part enters negated
+      irradiance = irradiance_before + sign * (irradiance - irradiance_before);
+      gradient = gradient_before + sign * (gradient - gradient_before);
+    }
   };
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters, options);
     if (!view.region.empty()) add(view.region, scene.apertures[a]);
-    for (const PaneView& behind : view.behind) add(behind.region, panes_through(scene, a, behind).combined);
+    for (const PaneView& behind : view.behind)
+      for (const PaneTerm& term : pane_terms(scene, a, behind)) add(behind.region, term.transmittance.combined, term.sign);
   }
   // The same expression as sky_component_percent's, so that the two agree to the last bit.
   const double e_out = unobstructed_horizontal_irradiance(sky);
@@ -82,12 +89,12 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
     if (!view.region.empty()) irradiance += through(view.region, scene.apertures[a]);
-    for (const PaneView& behind : view.behind) {
-      const PanesThrough panes = panes_through(scene, a, behind);
-      const double e = through(behind.region, panes.combined);
-      irradiance += e;
-      bound += panes.spread * e;
-    }
+    for (const PaneView& behind : view.behind)
+      for (const PaneTerm& term : pane_terms(scene, a, behind)) {
+        const double e = through(behind.region, term.transmittance.combined);
+        irradiance += term.sign * e;
+        bound += term.transmittance.spread * std::abs(e);
+      }
   }
   const double e_out = unobstructed_horizontal_irradiance(sky);
   const double percent = 100 * irradiance / e_out;

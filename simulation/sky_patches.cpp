@@ -66,7 +66,7 @@ std::vector<SkyPatch> reinhart_patches(int mf, const Site& site) {
 }
 
 void add_patch_coefficients(const std::vector<SkyPatch>& patches, const SphericalRegion& region, const Vec3& n,
-                            const Aperture& transmitting, std::vector<double>& coefficients, double& spread) {
+                            const Aperture& transmitting, std::vector<double>& coefficients, double& spread, double sign) {
   if (region.empty()) return;
   const bool glazed = !transmitting.angular_transmittance.empty();
   const Vec3 pane = glazed ? normalized(newell_normal(transmitting.polygon.vertices)) : Vec3{};
@@ -97,7 +97,7 @@ void add_patch_coefficients(const std::vector<SkyPatch>& patches, const Spherica
       const double t0 = T(std::clamp(c0, 0.0, 1.0)), t1 = T(std::clamp(c1, 0.0, 1.0));
       if (t > 0) spread = std::max(spread, 0.5 * std::abs(t1 - t0) / t);
     }
-    coefficients[i] += t * e;
+    coefficients[i] += sign * t * e;
   }
 }
 

@@ -34,8 +34,10 @@ std::vector<SkyPatch> reinhart_patches(int mf, const Site& site);
 // R seen through `transmitting`: exact for a constant T; glass's T(μ) is taken at each part's
 // centroid direction (∫_part u dσ, by the same caps), and `spread` (the largest relative
 // half-range of T over the part's azimuth wedge of R, which holds the part) bounds what that costs.
+// `sign` −1 subtracts (a count taken back: PaneView).
 void add_patch_coefficients(const std::vector<SkyPatch>& patches, const SphericalRegion& region, const Vec3& n,
-                            const Aperture& transmitting, std::vector<double>& coefficients, double& spread);
+                            const Aperture& transmitting, std::vector<double>& coefficients, double& spread,
+                            double sign = 1);
 
 // One hour's patch luminances (lux per sr, so that E = Σ_P coefficient_P · luminance_P): the
 // sky's relative luminance at each centre, scaled so that Σ_P L_P ω_P sin(altitude_P) is the hour's
