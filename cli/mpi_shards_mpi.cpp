@@ -178,7 +178,9 @@ VisibilityCounters sum(const VisibilityCounters& local) {
       &VisibilityCounters::pairs_unobstructed, &VisibilityCounters::pairs_covered,
       &VisibilityCounters::pairs_clipped,   &VisibilityCounters::pairs_rational,
       &VisibilityCounters::occluders_box_culled, &VisibilityCounters::occluders_tested,
-      &VisibilityCounters::occluders_clipped, &VisibilityCounters::occluders_skipped};
+      &VisibilityCounters::occluders_clipped, &VisibilityCounters::occluders_skipped,
+      &VisibilityCounters::panes_beyond,    &VisibilityCounters::panes_in_front,
+      &VisibilityCounters::panes_crossing};
   static_assert(sizeof(VisibilityCounters) == sizeof(fields) / sizeof(fields[0]) * sizeof(std::uint64_t),
                 "a counter was added to VisibilityCounters: add it here too");
   std::vector<std::uint64_t> mine, total(std::size(fields), 0);
