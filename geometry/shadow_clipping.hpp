@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -514,7 +515,8 @@ class ShadowClipper {
   }
 
   // Sign of x against side plane e of the cone (through p and edge e of w, positive inside).
-  int cone_side(const V3& x, const LineId& x_in, const LineId& edge, int e, const FT& value) const {
+  int cone_side(const ConvexPiece& blocker, const V3& x, const LineId& x_in, const LineId& edge, int e,
+                const FT& value) const {
     return decide(value, [&]() -> std::optional<int> {
       const LineId cone = LineId::cone(e);
       if (same_line(x.out, cone) || same_line(x_in, cone)) return 0;
@@ -549,7 +551,33 @@ class ShadowClipper {
         });
         if (along != 0) return det * along;
       }
-      return std::nullopt;
+      // Any other x where two lines meet (two of the cone's sides, a side and the cut along the
+      // aperture's plane: the corner of a luminaire that a wall of the next room touches) lies on
+      // the line through p along d = M_in × M_out, and on the blocker's plane N_o·(x − o0) = 0:
+      // x − p = λ d with λ = N_o·(o0 − p) / (N_o·d), so M_E·(x − p) = λ det[M_E, M_in, M_out], a
+      // sign decided exactly on the input. (N_o·d = 0: the line misses the plane, x is not there.)
+      if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
+        return std::nullopt;
+      const auto& ov = blocker.vertices;
+      const Vec3 &o0 = ov[0], &ob = ov[blocker.base_b], &oc = ov[blocker.base_c];
+      const int toward = predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        const auto a = plane_normal<T>(x_in), b = plane_normal<T>(x.out);
+        const T ux = T(ob.x) - T(o0.x), uy = T(ob.y) - T(o0.y), uz = T(ob.z) - T(o0.z);
+        const T vx = T(oc.x) - T(o0.x), vy = T(oc.y) - T(o0.y), vz = T(oc.z) - T(o0.z);
+        return (uy * vz - uz * vy) * (a[1] * b[2] - a[2] * b[1]) + (uz * vx - ux * vz) * (a[2] * b[0] - a[0] * b[2]) +
+               (ux * vy - uy * vx) * (a[0] * b[1] - a[1] * b[0]);
+      });
+      if (toward == 0) return std::nullopt;
+      const int det = predicates::filtered_sign([&](auto zero) {
+        using T = decltype(zero);
+        auto E = plane_normal<T>(edge);
+        if (edge.kind == LineId::Kind::segment && inside_ < 0) E = {-E[0], -E[1], -E[2]};
+        const auto a = plane_normal<T>(x_in), b = plane_normal<T>(x.out);
+        return E[0] * (a[1] * b[2] - a[2] * b[1]) + E[1] * (a[2] * b[0] - a[0] * b[2]) + E[2] * (a[0] * b[1] - a[1] * b[0]);
+      });
+      // sign λ = sign N_o·(o0 − p) · toward, and orient3(o0, o_b, o_c, p) = sign N_o·(p − o0).
+      return -Signs::orient3(o0, ob, oc, p_in_) * toward * det;
     });
   }
 
@@ -624,7 +652,7 @@ class ShadowClipper {
       SignedValues<FT> f;
       for (std::size_t q = 0; q < o.size(); ++q) {
         FT value = dot(m, o[q].c3());
-        const int s = cone_side(o[q], o[(q + o.size() - 1) % o.size()].out, w[e].out, int(e), value);
+        const int s = cone_side(blocker, o[q], o[(q + o.size() - 1) % o.size()].out, w[e].out, int(e), value);
         f.push(std::move(value), s);
       }
       if (!f.any_positive) return std::nullopt;
@@ -745,24 +773,42 @@ class ShadowClipper {
   // is not known by its definition.
   template <class T>
   std::optional<std::array<T, 3>> direction_from_input(const V2& x, const LineId& in) const {
-    const auto rel = [&](const Vec3& a) { return std::array<T, 3>{T(a.x) - T(p_in_.x), T(a.y) - T(p_in_.y), T(a.z) - T(p_in_.z)}; };
-    if (x.in_plane) return rel(*x.at);
-    std::array<T, 3> d;
-    if (x.at) {
-      d = rel(*x.at);
-    } else {
-      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) return std::nullopt;
-      const auto a = plane_normal<T>(in), b = plane_normal<T>(x.out);
-      d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    if (!x.in_plane && !x.at &&
+        (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)))
+      return std::nullopt;
+    // d, and N·d with N the aperture's normal, in number type U.
+    const auto line = [&](auto zero) {
+      using U = decltype(zero);
+      const auto rel = [&](const Vec3& a) { return std::array<U, 3>{U(a.x) - U(p_in_.x), U(a.y) - U(p_in_.y), U(a.z) - U(p_in_.z)}; };
+      std::array<U, 3> d;
+      if (x.at) {
+        d = rel(*x.at);
+      } else {
+        const auto a = plane_normal<U>(in), b = plane_normal<U>(x.out);
+        d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      }
+      const auto& wv = piece_.vertices;
+      const auto e1 = rel(wv[piece_.base_b]), e2 = rel(wv[piece_.base_c]), o = rel(wv[0]);
+      const std::array<U, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
+      const std::array<U, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
+      const U along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
+      return std::make_tuple(d, along, N[0] * o[0] + N[1] * o[1] + N[2] * o[2]);
+    };
+    if (x.in_plane) return std::get<0>(line(T(0)));
+    const auto [d, along, offset] = line(T(0));
+    if constexpr (std::is_same_v<T, Interval>) {
+      // Planes that coincide define no point: two lines whose planes through p are one (the feet
+      // of two walls standing on the receiver's floor, in its tangent plane; two coplanar
+      // blockers' cuts), N·d = 0 exactly. Decided exactly where the interval cannot, so that the
+      // vertex's constructed coordinates serve (as the rationals use theirs) rather than the
+      // pair going to rationals; a nonzero N·d too small for the interval still throws.
+      if (!CGAL::is_certain(CGAL::sign(along))) {
+        if (predicates::filtered_sign([&](auto zero) { return std::get<1>(line(zero)); }) == 0) return std::nullopt;
+        throw CGAL::Uncertain_conversion_exception("uncertain sign");
+      }
     }
-    const auto& wv = piece_.vertices;
-    const auto e1 = rel(wv[piece_.base_b]), e2 = rel(wv[piece_.base_c]), o = rel(wv[0]);
-    const std::array<T, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
-    const std::array<T, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
-    const T along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
-    // Planes that coincide define no point (an interval containing zero throws here).
     if (sign_of(along) == 0) return std::nullopt;
-    const T t = (N[0] * o[0] + N[1] * o[1] + N[2] * o[2]) / along;
+    const T t = offset / along;
     return std::array<T, 3>{d[0] * t, d[1] * t, d[2] * t};
   }
 
