@@ -21,7 +21,7 @@ namespace daylit::cli {
 
 struct ReflectionCliOptions {
   // The sky component alone by default: the radiosity is fast on rooms (the room sample in 1.6 s)
-  // but not yet on models whose many rooms share planes (a 7-room Honeybee house: 8 minutes at
+  // but not yet on models whose many rooms share planes (a 7-room Honeybee house: 3.4 minutes at
   // element size 3, against 0.08 s for SC; README, "Known limits").
   std::string components = "sc";
   double ground_reflectance = 0.2;
