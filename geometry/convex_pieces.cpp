@@ -74,7 +74,11 @@ bool convex_in_projection(const std::vector<Vec3>& v, int k) {
       if (sign != 0 && o != sign) return false;
       sign = o;
     }
-    turning += std::atan2(e1x * e2y - e1y * e2x, e1x * e2x + e1y * e2y);
+    // The turn's sign is the exact orientation's: at a turn back by nearly π the rounded cross
+    // product may have the other sign, and ±π then cancel where they add (a sliver doubling back
+    // twice along itself, 7e6 m long, summed to 2π and was kept whole, crossing itself; its
+    // visible solid angle came out negative: fuzz_visibility).
+    if (o != 0) turning += o * std::atan2(std::abs(e1x * e2y - e1y * e2x), e1x * e2x + e1y * e2y);
   }
   if (sign == 0 || !(std::abs(std::abs(turning) - 2 * std::numbers::pi) < 1.0)) return false;
   std::vector<std::pair<double, double>> points;

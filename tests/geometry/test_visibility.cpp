@@ -240,6 +240,18 @@ TEST_CASE("non-convex and seamed polygons are split into convex pieces that cove
 TEST_CASE("a polygon that crosses itself is an error naming its line") {
   const Polygon bowtie = polygon({{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 1, 0}}, "bowtie");
   CHECK_THROWS_WITH(convex_pieces(bowtie, 0), Catch::Contains("test:1") && Catch::Contains("intersects itself"));
+  // A sliver doubling back twice along itself, its vertices within float rounding of one line
+  // (found by fuzz_visibility): every exact turn has one sign, but at a turn back by nearly π
+  // the rounded cross product has the other, so summing rounded angles gave 2π and the polygon
+  // was kept whole as convex (its solid angle from below came out negative).
+  const Polygon sliver = polygon({{7393183.8073730469, 7393187.5, 1993164.6089553833},
+                                  {3572871.3073730469, 3572875, -1827105.8940887451},
+                                  {3400996.3073730469, 3401000, -1998976.9287109375},
+                                  {5318293.7316894531, 5318297.4243164062, -81723.738916218281},
+                                  {3401025.0549316406, 3401028.7475585938, -1998948.181815587},
+                                  {3400996.5515136719, 3401000.244140625, -1998976.6845759451}},
+                                 "sliver");
+  CHECK_THROWS_WITH(convex_pieces(sliver, 0), Catch::Contains("intersects itself"));
 }
 
 TEST_CASE("a window as a 64-gon behind occluders is clipped in certified intervals, with no rational fallback") {
