@@ -769,9 +769,14 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
                   });
       double difference = 0;
       for (std::size_t p = 0; p < nc; ++p) difference += std::abs(local.through[p]) + std::abs(local.inside[p]);
-      erc[i] = e_through;
-      irc[i] = e_inside;
       estimate[i] = difference + e_spread;
+      // Light is not negative: a component below 0 by less than its own estimate (the rounding of
+      // what is seen through an aperture less the same seen inside: −2.7e-19 on the office's
+      // sensors that see no exterior surface) is 0, which is nearer the truth; a larger negative
+      // value is kept, visible, as the sign of a defect.
+      const auto non_negative = [&](double v) { return v < 0 && -v <= estimate[i] ? 0.0 : v; };
+      erc[i] = non_negative(e_through);
+      irc[i] = non_negative(e_inside);
     });
     for (const auto& l : locals) result.counters += l.counters;
     out.erc.push_back(std::move(erc));
