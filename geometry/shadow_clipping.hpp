@@ -29,7 +29,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
-#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -773,29 +772,21 @@ class ShadowClipper {
   // is not known by its definition.
   template <class T>
   std::optional<std::array<T, 3>> direction_from_input(const V2& x, const LineId& in) const {
-    if (!x.in_plane && !x.at &&
-        (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)))
-      return std::nullopt;
-    // d, and N·d with N the aperture's normal, in number type U.
-    const auto line = [&](auto zero) {
-      using U = decltype(zero);
-      const auto rel = [&](const Vec3& a) { return std::array<U, 3>{U(a.x) - U(p_in_.x), U(a.y) - U(p_in_.y), U(a.z) - U(p_in_.z)}; };
-      std::array<U, 3> d;
-      if (x.at) {
-        d = rel(*x.at);
-      } else {
-        const auto a = plane_normal<U>(in), b = plane_normal<U>(x.out);
-        d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-      }
-      const auto& wv = piece_.vertices;
-      const auto e1 = rel(wv[piece_.base_b]), e2 = rel(wv[piece_.base_c]), o = rel(wv[0]);
-      const std::array<U, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
-      const std::array<U, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
-      const U along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
-      return std::make_tuple(d, along, N[0] * o[0] + N[1] * o[1] + N[2] * o[2]);
-    };
-    if (x.in_plane) return std::get<0>(line(T(0)));
-    const auto [d, along, offset] = line(T(0));
+    const auto rel = [&](const Vec3& a) { return std::array<T, 3>{T(a.x) - T(p_in_.x), T(a.y) - T(p_in_.y), T(a.z) - T(p_in_.z)}; };
+    if (x.in_plane) return rel(*x.at);
+    std::array<T, 3> d;
+    if (x.at) {
+      d = rel(*x.at);
+    } else {
+      if (in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(in, x.out)) return std::nullopt;
+      const auto a = plane_normal<T>(in), b = plane_normal<T>(x.out);
+      d = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    }
+    const auto& wv = piece_.vertices;
+    const auto e1 = rel(wv[piece_.base_b]), e2 = rel(wv[piece_.base_c]), o = rel(wv[0]);
+    const std::array<T, 3> e1o{e1[0] - o[0], e1[1] - o[1], e1[2] - o[2]}, e2o{e2[0] - o[0], e2[1] - o[1], e2[2] - o[2]};
+    const std::array<T, 3> N{e1o[1] * e2o[2] - e1o[2] * e2o[1], e1o[2] * e2o[0] - e1o[0] * e2o[2], e1o[0] * e2o[1] - e1o[1] * e2o[0]};
+    const T along = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
     if constexpr (std::is_same_v<T, Interval>) {
       // N·d too small for its interval: two lines whose planes through p (nearly) coincide, the
       // feet of two walls standing on the floor a receiver lies on, to the rounding of its
@@ -805,8 +796,9 @@ class ShadowClipper {
       // rather than the pair going to rationals: a house's node rows spent 83 % there.
       if (!CGAL::is_certain(CGAL::sign(along))) return std::nullopt;
     }
+    // Planes that coincide define no point.
     if (sign_of(along) == 0) return std::nullopt;
-    const T t = offset / along;
+    const T t = (N[0] * o[0] + N[1] * o[1] + N[2] * o[2]) / along;
     return std::array<T, 3>{d[0] * t, d[1] * t, d[2] * t};
   }
 
