@@ -111,9 +111,9 @@ void print_scene(const Scene& scene, const Vec3& p, const Vec3& n) {
   std::fprintf(stderr, "grid.pts: %.17g %.17g %.17g %.17g %.17g %.17g\n", p.x, p.y, p.z, n.x, n.y, n.z);
 }
 
-double visible_solid_angle(const VisibilityEngine& engine, const Vec3& p, const Vec3& n) {
+SphericalRegion visible_region(const VisibilityEngine& engine, const Vec3& p, const Vec3& n) {
   VisibilityCounters counters;
-  return solid_angle(engine.visible_region(p, n, 0, counters));
+  return engine.visible_region(p, n, 0, counters);
 }
 
 // How far two regions whose directions agree to 2^-45 of their length (the exact mode's
@@ -124,9 +124,7 @@ double visible_solid_angle(const VisibilityEngine& engine, const Vec3& p, const 
 // aperture's plane at 5.4e6 m, inside its outline: the cut along its horizon runs between nearly
 // opposite directions) makes the region itself ill-conditioned in double directions, and the
 // two modes may differ by that much (fuzz/README.md, "Known limits").
-double direction_conditioning_bound(const VisibilityEngine& engine, const Vec3& p, const Vec3& n) {
-  VisibilityCounters counters;
-  const SphericalRegion region = engine.visible_region(p, n, 0, counters);
+double direction_conditioning_bound(const SphericalRegion& region) {
   double bound = 0;
   for (const auto& loop : region.loops)
     for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -169,26 +167,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const Error&) {
     return 0;  // a polygon crosses itself: the reader's caller reports it with file:line
   }
-  const double unoccluded = visible_solid_angle(*free_exact, p, n);
-  const double e = visible_solid_angle(*exact, p, n);
-  const double r = visible_solid_angle(*rational, p, n);
-  const double f = visible_solid_angle(*floating, p, n);
-  if (std::getenv("DAYLIT_FUZZ_VERBOSE"))
-    std::fprintf(stderr, "solid angles: unoccluded %.17g exact %.17g rational %.17g float %.17g; conditioning %.3g (unoccluded %.3g)\n",
-                 unoccluded, e, r, f, direction_conditioning_bound(*rational, p, n), direction_conditioning_bound(*free_exact, p, n));
-    std::fprintf(stderr, "conditioning of the exact region %.3g\n", direction_conditioning_bound(*exact, p, n));
-  if (std::getenv("DAYLIT_FUZZ_LOOPS")) {
-    for (const VisibilityEngine* eng : {&*exact, &*rational}) {
-      VisibilityCounters c;
-      const SphericalRegion reg = eng->visible_region(p, n, 0, c);
+  // Each engine's region once: its solid angle and its conditioning (above) both come from it.
+  const SphericalRegion free_region = visible_region(*free_exact, p, n), exact_region = visible_region(*exact, p, n),
+                        rational_region = visible_region(*rational, p, n);
+  const double unoccluded = solid_angle(free_region), e = solid_angle(exact_region), r = solid_angle(rational_region);
+  const double f = solid_angle(visible_region(*floating, p, n));
+  const double conditioning_free = direction_conditioning_bound(free_region),
+               conditioning_exact = direction_conditioning_bound(exact_region),
+               conditioning_rational = direction_conditioning_bound(rational_region);
+  if (std::getenv("DAYLIT_FUZZ_VERBOSE")) {
+    std::fprintf(stderr, "solid angles: unoccluded %.17g exact %.17g rational %.17g float %.17g\n", unoccluded, e, r, f);
+    std::fprintf(stderr, "conditioning: unoccluded %.3g exact %.3g rational %.3g\n", conditioning_free,
+                 conditioning_exact, conditioning_rational);
+  }
+  if (std::getenv("DAYLIT_FUZZ_LOOPS"))
+    for (const SphericalRegion* region : {&exact_region, &rational_region}) {
       std::fprintf(stderr, "region:\n");
-      for (const auto& loop : reg.loops) {
+      for (const auto& loop : region->loops) {
         std::fprintf(stderr, " loop %.17g:", solid_angle(SphericalRegion{{loop}}));
         for (const Vec3& v : loop) std::fprintf(stderr, " (%.17g %.17g %.17g)", v.x, v.y, v.z);
         std::fprintf(stderr, "\n");
       }
     }
-  }
   if (!std::isfinite(unoccluded) || !std::isfinite(e) || !std::isfinite(r)) finding("non-finite solid angle", e, r);
   if (!std::isfinite(f)) finding("non-finite solid angle in float mode", f, r);
   const double slack = 1e-9 * unoccluded + 1e-15;
@@ -203,13 +203,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // allowance, the occluded one's far from it; found by fuzz_visibility). A region whose arcs all
   // but reach π (a receiver in the plane of a glazing to the last bits: 402 sr of allowance) is
   // not defined by its double directions at all (fuzz/README.md).
-  const double conditioning_exact = direction_conditioning_bound(*exact, p, n);
-  if (e < -slack - rounding - conditioning_exact || r < -slack - rounding - direction_conditioning_bound(*rational, p, n))
+  if (e < -slack - rounding - conditioning_exact || r < -slack - rounding - conditioning_rational)
     finding("negative visible solid angle (exact, rational)", e, r);
-  if (e > unoccluded + slack + rounding + conditioning_exact + direction_conditioning_bound(*free_exact, p, n))
+  if (e > unoccluded + slack + rounding + conditioning_exact + conditioning_free)
     finding("occluders add solid angle (visible, unoccluded)", e, unoccluded);
   if (std::abs(e - r) > 1e-9 * std::abs(r) + 1e-13 * unoccluded + 1e-15 + rounding + conditioning_exact +
-                            direction_conditioning_bound(*rational, p, n))
+                            conditioning_rational)
     finding("exact and rational modes disagree", e, r);
   return 0;
 }
