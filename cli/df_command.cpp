@@ -40,7 +40,7 @@ struct DfOptions {
   ModelFiles files;
   std::string sky = "cie-overcast";
   std::string geometry = "exact";
-  std::string order = "as-built";
+  std::string order = "front-to-back";
   std::string out, summary, image, results;
   int threads = 0;
   bool quiet = false;
@@ -284,9 +284,10 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "doubles, for comparison) or rational (rationals throughout: a slow reference)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   df->add_option("--subtraction-order", opt->order,
-                 "Order in which occluders' shadows are subtracted: as-built (default: results to the last bit as before) or "
-                 "front-to-back (nearest first, shadows hidden behind others skipped by boxes: much faster among many "
-                 "occluders; the same region partitioned otherwise, so results differ in the last digits, a few 1e-14)")
+                 "Order in which occluders' shadows are subtracted: front-to-back (default: nearest first, shadows hidden "
+                 "behind others skipped by boxes, pieces merged where their union is convex) or as-built (the order of "
+                 "daylit before 2026-12, to reproduce its results to the last bit: the same region partitioned otherwise, "
+                 "so results differ in the last digits, a few 1e-14; far slower among many occluders)")
       ->check(CLI::IsMember({"as-built", "front-to-back"}));
   df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   df->add_option("--site", files.site,

@@ -11,7 +11,10 @@
 //     unoccluded aperture's solid angle: both hand the kernels directions rounded to double, so a
 //     sliver of 1e-12 sr cut from a 0.1 sr window carries ~1e-15 sr of rounding in either (the
 //     fuzzer found exactly that: 1.9270e-12 against 1.9283e-12 sr);
-//   - the float mode returns a finite solid angle.
+//   - the float mode returns a finite solid angle;
+//   - front to back (SubtractionOrder::front_to_back: nearest shadow first, hidden ones skipped,
+//     pieces that share an edge merged where their union is certainly convex) gives the same
+//     set, exact and rational alike, to the same allowance as the two modes.
 
 #include <fuzzer/FuzzedDataProvider.h>
 
@@ -158,12 +161,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   n = normalized(n);
 
   print_scene(scene, p, n);
-  std::optional<VisibilityEngine> free_exact, exact, rational, floating;
+  std::optional<VisibilityEngine> free_exact, exact, rational, floating, front_exact, front_rational;
   try {
-    free_exact.emplace(free_scene, GeometryMode::exact);
-    exact.emplace(scene, GeometryMode::exact);
-    rational.emplace(scene, GeometryMode::rational);
-    floating.emplace(scene, GeometryMode::floating);
+    free_exact.emplace(free_scene, GeometryMode::exact, SubtractionOrder::as_built);
+    exact.emplace(scene, GeometryMode::exact, SubtractionOrder::as_built);
+    rational.emplace(scene, GeometryMode::rational, SubtractionOrder::as_built);
+    floating.emplace(scene, GeometryMode::floating, SubtractionOrder::as_built);
+    front_exact.emplace(scene, GeometryMode::exact, SubtractionOrder::front_to_back);
+    front_rational.emplace(scene, GeometryMode::rational, SubtractionOrder::front_to_back);
   } catch (const Error&) {
     return 0;  // a polygon crosses itself: the reader's caller reports it with file:line
   }
@@ -172,11 +177,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                         rational_region = visible_region(*rational, p, n);
   const double unoccluded = solid_angle(free_region), e = solid_angle(exact_region), r = solid_angle(rational_region);
   const double f = solid_angle(visible_region(*floating, p, n));
+  const SphericalRegion front_exact_region = visible_region(*front_exact, p, n),
+                        front_rational_region = visible_region(*front_rational, p, n);
+  const double fe = solid_angle(front_exact_region), fr = solid_angle(front_rational_region);
   const double conditioning_free = direction_conditioning_bound(free_region),
                conditioning_exact = direction_conditioning_bound(exact_region),
                conditioning_rational = direction_conditioning_bound(rational_region);
   if (std::getenv("DAYLIT_FUZZ_VERBOSE")) {
     std::fprintf(stderr, "solid angles: unoccluded %.17g exact %.17g rational %.17g float %.17g\n", unoccluded, e, r, f);
+    std::fprintf(stderr, "front to back: exact %.17g rational %.17g\n", fe, fr);
     std::fprintf(stderr, "conditioning: unoccluded %.3g exact %.3g rational %.3g\n", conditioning_free,
                  conditioning_exact, conditioning_rational);
   }
@@ -190,6 +199,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
   if (!std::isfinite(unoccluded) || !std::isfinite(e) || !std::isfinite(r)) finding("non-finite solid angle", e, r);
+  if (!std::isfinite(fe) || !std::isfinite(fr)) finding("non-finite solid angle front to back", fe, fr);
   if (!std::isfinite(f)) finding("non-finite solid angle in float mode", f, r);
   const double slack = 1e-9 * unoccluded + 1e-15;
   // A region of zero true area comes back with its directions rounded (rational mode: once, to
@@ -210,5 +220,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (std::abs(e - r) > 1e-9 * std::abs(r) + 1e-13 * unoccluded + 1e-15 + rounding + conditioning_exact +
                             conditioning_rational)
     finding("exact and rational modes disagree", e, r);
+  const double conditioning_front_exact = direction_conditioning_bound(front_exact_region),
+               conditioning_front_rational = direction_conditioning_bound(front_rational_region);
+  const double base = 1e-9 * std::abs(r) + 1e-13 * unoccluded + 1e-15 + rounding;
+  if (std::abs(fe - e) > base + conditioning_exact + conditioning_front_exact)
+    finding("front to back and the default order disagree (exact)", fe, e);
+  if (std::abs(fr - r) > base + conditioning_rational + conditioning_front_rational)
+    finding("front to back and the default order disagree (rational)", fr, r);
   return 0;
 }

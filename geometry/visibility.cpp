@@ -824,6 +824,7 @@ std::size_t VisibilityEngine::aperture_count() const noexcept { return impl_->ap
 std::size_t VisibilityEngine::occluder_piece_count() const noexcept { return impl_->occluders.size(); }
 std::size_t VisibilityEngine::aperture_piece_count() const noexcept { return impl_->aperture_pieces; }
 GeometryMode VisibilityEngine::mode() const noexcept { return impl_->mode; }
+SubtractionOrder VisibilityEngine::order() const noexcept { return impl_->order_of_subtraction; }
 bool VisibilityEngine::panes_interact() const noexcept { return impl_->panes; }
 
 SphericalRegion VisibilityEngine::visible_region(const Vec3& p, const Vec3& n, std::size_t aperture,

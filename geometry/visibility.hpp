@@ -18,15 +18,20 @@ enum class GeometryMode {
              // slow reference that the exact mode's certified shortcuts must reproduce
 };
 
-// The order in which the occluder pieces' shadows are subtracted from an aperture piece.
+// The order in which the occluder pieces' shadows are subtracted from an aperture piece. Both
+// give the same set of directions; the partition into loops differs, and with it the last digits
+// of every sum over the loops (a few 1e-14 relative; bench scenes measures by how much).
 enum class SubtractionOrder {
-  // The order of the culling hierarchy, as the engine always had: results to the last bit as
-  // before (the partition into loops, and so every kernel's rounding, depends on the order).
+  // The order of the culling hierarchy, as the engine had until 2026-12: results to the last bit
+  // as before (the partition into loops, and so every kernel's rounding, depends on the order).
   as_built,
-  // Nearest occluder piece first, and a shadow whose bounding box (in double, with a margin that
-  // covers its rounding) misses a remaining visible piece's is not subtracted from it: the
-  // occluders hidden behind others cost a box test. The region is the same set; its partition
-  // differs, so sums differ in the last digits (bench scenes measures by how much).
+  // The default. Nearest occluder piece first; a shadow whose bounding box (in double, with a
+  // margin that covers its rounding) misses a remaining visible piece's is not subtracted from
+  // it, so occluders hidden behind others cost a box test; and after each subtraction that cut
+  // pieces, two pieces that share a whole edge merge where their union is certainly convex
+  // (ShadowClipper::merge_pieces), so that the cuts a shadow's edge lines leave across what stays
+  // visible do not multiply. Honeybee's lab_building: one window's view 44,264 loops as built,
+  // 6,737 without the merging, far fewer with it; the whole model 36 s on 2 cores, was ~15 min.
   front_to_back,
 };
 
@@ -128,7 +133,7 @@ class VisibilityEngine {
   // Throws daylit::Error for polygons that cross themselves.
   // With more than one aperture and AperturesAre::panes, every aperture's pieces also take part in
   // the others' visibility (ApertureView).
-  VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order = SubtractionOrder::as_built,
+  VisibilityEngine(const Scene& scene, GeometryMode mode, SubtractionOrder order = SubtractionOrder::front_to_back,
                    AperturesAre apertures = AperturesAre::panes);
   ~VisibilityEngine();
   VisibilityEngine(VisibilityEngine&&) noexcept;
@@ -138,6 +143,7 @@ class VisibilityEngine {
   std::size_t occluder_piece_count() const noexcept;
   std::size_t aperture_piece_count() const noexcept;
   GeometryMode mode() const noexcept;
+  SubtractionOrder order() const noexcept;
 
   // The directions from receiver p (normal n, unit) that pass through aperture `aperture`, lie in
   // front of the receiver's tangent plane and above the horizontal plane through p, and meet no

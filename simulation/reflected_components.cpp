@@ -509,13 +509,13 @@ class Transport {
     base.occluders = scene_.occluders;
     Scene inside = base;
     for (const Aperture& a : scene_.apertures) inside.occluders.push_back(a.polygon);
-    inside_ = std::make_unique<VisibilityEngine>(inside, options_.mode, SubtractionOrder::as_built, AperturesAre::independent);
+    inside_ = std::make_unique<VisibilityEngine>(inside, options_.mode, engine_.order(), AperturesAre::independent);
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       Scene t = base;
       for (std::size_t h = 0; h < groups_.size(); ++h)
         if (h != g)
           for (std::size_t a : groups_[h].apertures) t.occluders.push_back(scene_.apertures[a].polygon);
-      through_.emplace_back(t, options_.mode, SubtractionOrder::as_built, AperturesAre::independent);
+      through_.emplace_back(t, options_.mode, engine_.order(), AperturesAre::independent);
     }
     remesh_boxes();
   }
@@ -538,7 +538,7 @@ class Transport {
     face({{lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}});
     face({{lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {lo.x, lo.y, hi.z}});
     face({{hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z}});
-    sky_box_ = std::make_unique<VisibilityEngine>(box, options_.mode, SubtractionOrder::as_built, AperturesAre::independent);
+    sky_box_ = std::make_unique<VisibilityEngine>(box, options_.mode, engine_.order(), AperturesAre::independent);
   }
 
   const Scene& scene_;

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include "illumination/solid_angle.hpp"
 #include "illumination/xoshiro256.hpp"
 #include "simulation/sky_component.hpp"
 #include "test_scenes.hpp"
@@ -75,7 +76,7 @@ TEST_CASE("on random grid-aligned scenes the certified path equals the rational 
   CHECK(counters.pairs_clipped > 500);
 }
 
-TEST_CASE("front to back gives the same regions as the default order, partitioned otherwise") {
+TEST_CASE("front to back gives the same regions as the order as built, partitioned otherwise") {
   // SubtractionOrder::front_to_back sorts the shadows nearest first and skips those whose boxes
   // miss a remaining piece: the region is the same set, only its loops differ, so the sky
   // components agree to the rounding of the sums over a partition (a few 1e-14 observed; bounded
@@ -92,7 +93,8 @@ TEST_CASE("front to back gives the same regions as the default order, partitione
       const Vec3 lo{grid(-40, 40), grid(-60, -4), 0};
       add_box(scene, lo, {lo.x + grid(1, 8), lo.y + grid(1, 8), grid(2, 40)});
     }
-    const VisibilityEngine as_built(scene, GeometryMode::exact), front(scene, GeometryMode::exact, SubtractionOrder::front_to_back);
+    const VisibilityEngine as_built(scene, GeometryMode::exact, SubtractionOrder::as_built),
+        front(scene, GeometryMode::exact, SubtractionOrder::front_to_back);
     for (int s = 0; s < 20; ++s) {
       const Sensor sensor{{grid(0, 8), grid(1, 16), grid(2, 5)}, {0, 0, 1}};
       const double value = sc(as_built, scene, sensor, counters), other = sc(front, scene, sensor, front_counters);
@@ -105,4 +107,52 @@ TEST_CASE("front to back gives the same regions as the default order, partitione
   CHECK(front_counters.occluders_clipped == counters.occluders_clipped);  // the same survivors, in another order
   CHECK(front_counters.occluders_skipped > front_counters.occluders_clipped / 4);
   CHECK(counters.occluders_skipped == 0);
+}
+
+TEST_CASE("front to back merges the pieces that walls of triangles leave: the same region in fewer loops") {
+  // Façades given as triangles (what a wall planar only within tolerance becomes, as in Honeybee's
+  // lab_building): each triangle's shadow cuts the visible pieces along the whole lines of its
+  // edges, so the sky above the skyline is cut into slivers that stay visible side by side. Front
+  // to back joins two pieces that share a whole edge where their union is convex, by certain signs
+  // only: the region must be the same set (its solid angle and sky component to the rounding of
+  // a sum over another partition) in far fewer loops, and the rational mode, which decides every
+  // turn exactly, must agree.
+  Scene scene;
+  scene.apertures.push_back({polygon({{0, 0, 1}, {2, 0, 1}, {2, 0, 2.5}, {0, 0, 2.5}}, "window"), 1.0});
+  const auto add_triangulated_wall = [&](double y, double x0, double x1, double height, double cell) {
+    for (double x = x0; x < x1; x += cell)
+      for (double z = 0; z < height; z += cell) {
+        const double xe = x + cell, ze = z + cell;
+        scene.occluders.push_back(polygon({{x, y, z}, {xe, y, z}, {xe, y, ze}}, "lower"));
+        scene.occluders.push_back(polygon({{x, y, z}, {xe, y, ze}, {x, y, ze}}, "upper"));
+      }
+  };
+  add_triangulated_wall(-6, -8, 10, 3, 1);
+  add_triangulated_wall(-11, -14, 4, 5, 1);
+  const VisibilityEngine as_built(scene, GeometryMode::exact, SubtractionOrder::as_built),
+      front(scene, GeometryMode::exact, SubtractionOrder::front_to_back),
+      front_rational(scene, GeometryMode::rational, SubtractionOrder::front_to_back);
+  std::size_t loops_as_built = 0, loops_front = 0;
+  for (const double y : {0.5, 1.5, 3.0})
+    for (const double x : {0.25, 1.0, 1.75}) {
+      const Vec3 p{x, y, 0.85}, n{0, 0, 1};
+      VisibilityCounters counters;
+      const SphericalRegion a = as_built.visible_region(p, n, 0, counters), f = front.visible_region(p, n, 0, counters),
+                            r = front_rational.visible_region(p, n, 0, counters);
+      INFO("sensor " << x << " " << y);
+      const double omega = solid_angle(a);
+      REQUIRE(omega > 1e-3);
+      // Directions certified to 2^-45 of their length; a few hundred loops: 1e-12 is ample.
+      CHECK(std::abs(solid_angle(f) - omega) <= 1e-12 * omega);
+      CHECK(std::abs(solid_angle(r) - omega) <= 1e-12 * omega);
+      const Sensor sensor{p, n};
+      const double sc_a = sc(as_built, scene, sensor, counters), sc_f = sc(front, scene, sensor, counters);
+      CHECK(std::abs(sc_f - sc_a) <= 1e-12 * sc_a);
+      loops_as_built += a.loops.size();
+      loops_front += f.loops.size();
+    }
+  // Measured: 2,265 loops as built, 483 front to back without the merging (skipping alone), 170
+  // with it: the bound of a tenth fails without the merging.
+  INFO("loops as built " << loops_as_built << ", front to back " << loops_front);
+  CHECK(loops_front * 10 <= loops_as_built);
 }
