@@ -122,17 +122,27 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
                                      "angular data");
         scene.apertures.push_back({poly, *options.bsdf_transmittance});
       }
+    } else if (type == "trans") {
+      // Radiance's trans (ray/src/rt/normal.c): of what the surface does not reflect specularly
+      // (1 − spec), the fraction trans passes through, tspec of that specularly and the rest
+      // diffusely, all of it tinted by the colour. Wherever it is filed (a translucent pane, a
+      // foliage shade, Honeybee's air boundary, trans 1 1 1 0 0 1 1) it is a pane of the total
+      // transmittance: what lies beyond is seen through it, attenuated, and light through several
+      // panes counts once (AperturesAre::panes). Its diffuse part is treated as clear, the stated
+      // approximation; its reflection is left out, as glass's is.
+      const auto& a = material->reals;
+      const double t = (1 - a[3]) * a[5] * radiance_luminance(a[0], a[1], a[2]);
+      const double reflected = (1 - a[3]) * (1 - a[5]) * radiance_luminance(a[0], a[1], a[2]) + a[3];
+      // A transmitted specularity of 1 leaves no diffuse part to treat (OBJ apertures of constant
+      // transmittance are such trans: materials/obj_materials.hpp).
+      describe_once(*material, (entry.from_aperture_file ? "" : material->where.str() + ": ") + "trans " +
+                                   printable(material->name) + ": a pane of transmittance " + format_fraction(t) +
+                                   (a[6] < 1 ? ", its diffuse part (" + format_fraction(t * (1 - a[6])) + ") treated as clear" : std::string()) +
+                                   (reflected > 0 ? "; its reflectance " + format_fraction(reflected) + " is not used" : std::string()));
+      scene.apertures.push_back({poly, t});
     } else if (entry.from_aperture_file) {
       if (type == "void") {
         scene.apertures.push_back({poly, 1.0});
-      } else if (type == "trans") {
-        const auto& a = material->reals;
-        const double t = (1 - a[3]) * a[5] * radiance_luminance(a[0], a[1], a[2]);
-        // A transmitted specularity of 1 leaves no diffuse part to treat (OBJ apertures of constant
-        // transmittance are such trans: materials/obj_materials.hpp).
-        describe_once(*material, "trans '" + material->name + "': transmittance " + format_fraction(t) +
-                                     (a[6] < 1 ? ", its diffuse part treated as clear" : ""));
-        scene.apertures.push_back({poly, t});
       } else {
         opaque_in_apertures.add(poly);
         scene.occluders.push_back(poly);
@@ -140,10 +150,6 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
     } else if (type == "void") {
       void_in_scene.add(poly);
     } else {
-      if (type == "trans")
-        describe_once(*material, material->where.str() + ": trans " + printable(material->name) +
-                                     " in a scene file is an opaque occluder: the light it transmits is left out (give "
-                                     "its polygons with --apertures to make them openings)");
       scene.occluders.push_back(poly);
     }
   }

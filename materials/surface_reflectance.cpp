@@ -40,7 +40,7 @@ SurfaceReflectance surface_reflectance(const Material* material) {
     throw input_error(m.where, "mirror '" + m.name +
                                    "' reflects specularly, which diffuse radiosity cannot represent; give the surface a "
                                    "plastic or metal material, or compute the sky component alone (--components sc)");
-  if (m.type != "plastic" && m.type != "metal" && m.type != "trans")
+  if (m.type != "plastic" && m.type != "metal")
     throw input_error(m.where, m.type + " '" + m.name + "' is not an opaque surface material");
   const char* const channel[3] = {"red reflectance", "green reflectance", "blue reflectance"};
   for (int c = 0; c < 3; ++c) check_fraction(m, r[c], channel[c]);
@@ -52,21 +52,11 @@ SurfaceReflectance surface_reflectance(const Material* material) {
     out.specular_as_diffuse = spec;
     out.description = "plastic: diffuse " + fraction((1 - spec) * grey) +
                       (spec > 0 ? " and specular " + fraction(spec) + " reflected diffusely" : std::string());
-  } else if (m.type == "metal") {
+  } else {  // metal
     out.reflectance = grey;
     out.specular_as_diffuse = spec * grey;
     out.description = "metal: diffuse " + fraction((1 - spec) * grey) +
                       (spec > 0 ? " and specular " + fraction(spec * grey) + " reflected diffusely" : std::string());
-  } else {  // trans
-    check_fraction(m, r[5], "transmissivity");
-    check_fraction(m, r[6], "transmitted specularity");
-    const double tau = r[5];
-    out.reflectance = (1 - spec) * (1 - tau) * grey + spec;
-    out.specular_as_diffuse = spec;
-    out.transmittance_lost = (1 - spec) * tau * grey;
-    out.description = "trans in a scene file: reflects " + fraction(out.reflectance) +
-                      " diffusely; its transmitted part " + fraction(out.transmittance_lost) +
-                      " is not passed through the surface (counted as absorbed)";
   }
   if (!(out.reflectance < 1))
     throw input_error(m.where, m.type + " '" + m.name + "': reflectance " + fraction(out.reflectance) +

@@ -1,18 +1,16 @@
 #pragma once
 // The diffuse reflectance of an opaque surface, from its Radiance material: what the reflected
 // components (DESIGN.md §4) take as the surface's ρ. Radiance's materials reflect in parts
-// (diffuse, specular; trans also transmits); a radiosity solution carries Lambertian exitance only,
-// so every part is either reflected diffusely or counted as lost, and the description says which.
+// (diffuse, specular); a radiosity solution carries Lambertian exitance only, so every part is
+// either reflected diffusely or counted as lost, and the description says which.
 //
 //   plastic  R G B spec rough: diffuse (1 − spec)·grey(RGB), specular spec (uncoloured). Both are
 //            reflected diffusely: ρ = (1 − spec)·grey + spec. The energy is Radiance's; only the
 //            direction of the specular lobe is not kept (exact for spec = 0, the common case).
 //   metal    R G B spec rough: diffuse (1 − spec)·grey, specular spec·grey (coloured): ρ = grey,
 //            reflected diffusely as plastic's specular part is.
-//   trans    R G B spec rough τ τ_s: reflected (1 − spec)(1 − τ)·grey + spec, diffusely; the
-//            transmitted part (1 − spec)·τ·grey passes through the surface in Radiance. Here a
-//            trans surface in a scene file is opaque: its transmitted part is lost, and the
-//            description states that fraction (a bound on the light not passed on).
+//   trans    is not an opaque surface: wherever it is filed it is a pane of transmittance
+//            (1 − spec)·τ·grey (materials/scene_materials.cpp), so it never reaches this function.
 //   void     (the null modifier) and glow/light (emitters: the sky comes from --sky): black.
 //   mirror   specular only: not representable; an error when reflections are computed.
 //
@@ -30,7 +28,6 @@ namespace daylit {
 
 struct SurfaceReflectance {
   double reflectance = 0;          // diffuse, in [0, 1)
-  double transmittance_lost = 0;   // trans: the transmitted fraction counted as absorbed
   double specular_as_diffuse = 0;  // the specular part folded into `reflectance`
   std::string description;         // one line for notices and the summary: how ρ was obtained
 };
