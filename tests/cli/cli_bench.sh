@@ -103,7 +103,13 @@ for f in scenes_floor.csv scenes_floor_scene.rad scenes_floor_apertures.rad scen
 done
 [ "$(awk -F, 'NR > 1 && $14 > 0' "$out/scenes_floor.csv" | wc -l)" -ge 2 ] || fail "floor: no pair found hidden by walls"
 "$daylit" df --components sc --scene "$out/scenes_floor_scene.rad" --apertures "$out/scenes_floor_apertures.rad" --grid "$out/scenes_floor_grid.pts" \
-  --quiet --out "$out/floor_df.csv" || fail "df on the written floor: exit status $?"
+  --quiet --out "$out/floor_df.csv" --summary "$out/floor_df.json" || fail "df on the written floor: exit status $?"
+# …with its occluders: the file's polygon count (its first line says it) all read as occluders.
+python3 - "$out/scenes_floor_scene.rad" "$out/floor_df.json" <<'PY' || fail "df did not read the written floor's occluders"
+import json, re, sys
+written = int(re.search(r"\((\d+) polygons\)", open(sys.argv[1]).readline()).group(1))
+assert json.load(open(sys.argv[2]))["scene"]["occluders"] == written > 0
+PY
 # Front to back gives the same regions as another partition: the sums within the certified bound.
 [ "$(awk -F, 'NR > 1 && $3 == "front_to_back" && !($10 < 1e-12)' "$out/scenes_occluders_one_core.csv" | wc -l)" -eq 0 ] ||
   fail "front to back differs from the default by 1e-12 or more"
