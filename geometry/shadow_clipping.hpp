@@ -30,7 +30,6 @@
 #include <cstdlib>
 #include <optional>
 #include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -314,7 +313,11 @@ class ShadowClipper {
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
     std::vector<std::uint64_t> tag(1, 0);
     for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out, ++next_id_});
-    for (std::size_t b = 0; b < blockers.size(); ++b) {
+    // Front to back, the pieces are merged whenever they have doubled since the last merge, and
+    // once at the end: each merge costs a pass over every edge, so it is amortised over as many
+    // pieces as it found (a 361-gon's shadow leaves about as many pieces as it has vertices,
+    // none of which merge).
+    std::size_t after_merge = 1;    for (std::size_t b = 0; b < blockers.size(); ++b) {
       const int bit = pane ? (*pane)[b] : -1;
       std::optional<Box2> box;
       if (skip_disjoint_ || bit >= 0) {
@@ -341,12 +344,15 @@ class ShadowClipper {
           next_tag.push_back(tag[q] | (std::uint64_t(1) << bit));
         }
       }
-      const bool more = next.size() > pieces.size();
       pieces = std::move(next);
       tag = std::move(next_tag);
       if (pieces.empty()) break;
-      if (skip_disjoint_ && more) merge_pieces(pieces, tag);
+      if (skip_disjoint_ && pieces.size() >= 2 * after_merge) {
+        merge_pieces(pieces, tag);
+        after_merge = pieces.size();
+      }
     }
+    if (skip_disjoint_ && pieces.size() > after_merge) merge_pieces(pieces, tag);
     if (tags) *tags = std::move(tag);
     return pieces;
   }
@@ -699,6 +705,11 @@ class ShadowClipper {
   int line_side(const V2& x, const LineId& x_in, const V2& a, const V2& b, const LineId& L, bool reversed,
                 const FT& value) const {
     return decide(value, [&]() -> std::optional<int> {
+      // The projection of an endpoint of L's segment lies in the plane through p and L (whichever
+      // side of p the endpoint is): decided by identity before the collinearity tests below,
+      // which a fan of triangles (every edge through its apex) would otherwise ask at every
+      // vertex on the apex.
+      if (x.at && L.kind == LineId::Kind::segment && (*x.at == *L.a || *x.at == *L.b)) return 0;
       if (same_line(x.out, L) || same_line(x_in, L)) return 0;
       if (a.in_plane && b.in_plane && x.in_plane) return Signs::orient2(*a.at, *b.at, *x.at, k_);
       if (L.kind != LineId::Kind::segment && L.kind != LineId::Kind::aperture_plane) return std::nullopt;
@@ -814,11 +825,18 @@ class ShadowClipper {
   void merge_pieces(std::vector<std::vector<V2>>& pieces, std::vector<std::uint64_t>& tag) const {
     for (bool merged = true; merged;) {
       merged = false;
-      std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> edge_at;  // (from, to) → (piece, index)
+      // Every edge as (from, to) → (piece, index), sorted by key: one allocation per pass.
       const auto key = [](std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; };
+      struct Edge {
+        std::uint64_t key;
+        std::uint32_t piece, index;
+        bool operator<(const Edge& o) const { return key < o.key; }
+      };
+      std::vector<Edge> edges;
       for (std::size_t q = 0; q < pieces.size(); ++q)
         for (std::size_t k = 0; k < pieces[q].size(); ++k)
-          edge_at.emplace(key(pieces[q][k].id, pieces[q][(k + 1) % pieces[q].size()].id), std::make_pair(q, k));
+          edges.push_back({key(pieces[q][k].id, pieces[q][(k + 1) % pieces[q].size()].id), std::uint32_t(q), std::uint32_t(k)});
+      std::sort(edges.begin(), edges.end());
       std::vector<bool> gone(pieces.size(), false), changed(pieces.size(), false);
       for (std::size_t q = 0; q < pieces.size(); ++q) {
         if (gone[q] || changed[q]) continue;
@@ -828,9 +846,9 @@ class ShadowClipper {
           const V2& x1 = A[k];
           const V2& x2 = A[(k + 1) % na];
           if (x1.id == 0 || x2.id == 0) continue;
-          const auto it = edge_at.find(key(x2.id, x1.id));
-          if (it == edge_at.end()) continue;
-          const auto [r, j] = it->second;  // B's edge from x2 to x1 starts at B[j]
+          const auto it = std::lower_bound(edges.begin(), edges.end(), Edge{key(x2.id, x1.id), 0, 0});
+          if (it == edges.end() || it->key != key(x2.id, x1.id)) continue;
+          const std::size_t r = it->piece, j = it->index;  // B's edge from x2 to x1 starts at B[j]
           if (r == q || gone[r] || changed[r] || tag[r] != tag[q]) continue;
           const auto& B = pieces[r];
           const std::size_t nb = B.size();
@@ -839,8 +857,13 @@ class ShadowClipper {
           const V2& b_prev = B[(j + nb - 1) % nb];  // B's edge into x2 leaves it
           const V2& y1 = B[(j + 1) % nb];           // x1 in B: its edge out of x1
           const V2& b_next = B[(j + 2) % nb];
-          const bool straight1 = same_line(a_prev.out, y1.out), straight2 = same_line(b_prev.out, x2.out);
-          if (!(straight1 || turns_left(a_prev, x1, b_next)) || !(straight2 || turns_left(b_prev, x2, a_next))) continue;
+          // A certain left turn first (intervals); only where it is not certain, the exact test for
+          // a straight junction.
+          const bool left1 = turns_left(a_prev, x1, b_next), left2 = turns_left(b_prev, x2, a_next);
+          const bool straight1 = !left1 && same_line(a_prev.out, y1.out);
+          if (!left1 && !straight1) continue;
+          const bool straight2 = !left2 && same_line(b_prev.out, x2.out);
+          if (!left2 && !straight2) continue;
           std::vector<V2> u;
           u.reserve(na + nb - 2);
           if (!straight2) u.push_back(x2);
