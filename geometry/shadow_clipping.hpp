@@ -317,7 +317,8 @@ class ShadowClipper {
     // once at the end: each merge costs a pass over every edge, so it is amortised over as many
     // pieces as it found (a 361-gon's shadow leaves about as many pieces as it has vertices,
     // none of which merge).
-    std::size_t after_merge = 1;    for (std::size_t b = 0; b < blockers.size(); ++b) {
+    std::size_t after_merge = 1;
+    for (std::size_t b = 0; b < blockers.size(); ++b) {
       const int bit = pane ? (*pane)[b] : -1;
       std::optional<Box2> box;
       if (skip_disjoint_ || bit >= 0) {

@@ -131,8 +131,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       // panes counts once (AperturesAre::panes). Its diffuse part is treated as clear, the stated
       // approximation; its reflection is left out, as glass's is.
       const auto& a = material->reals;
-      const double t = (1 - a[3]) * a[5] * radiance_luminance(a[0], a[1], a[2]);
-      const double reflected = (1 - a[3]) * (1 - a[5]) * radiance_luminance(a[0], a[1], a[2]) + a[3];
+      const double grey = radiance_luminance(a[0], a[1], a[2]);
+      const double t = (1 - a[3]) * a[5] * grey, reflected = (1 - a[3]) * (1 - a[5]) * grey + a[3];
       // A transmitted specularity of 1 leaves no diffuse part to treat (OBJ apertures of constant
       // transmittance are such trans: materials/obj_materials.hpp).
       describe_once(*material, (entry.from_aperture_file ? "" : material->where.str() + ": ") + "trans " +
