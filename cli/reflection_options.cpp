@@ -38,6 +38,13 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "Further rounds of splitting every element while the tolerance is not met "
                                          "(default 0)")
                           ->check(CLI::Range(0, 8)));
+  o.options.push_back(command.add_option("--reflection-transport", o.transport,
+                                         "reciprocal (default): the collocated transport between elements made "
+                                         "symmetric (reciprocity) with every node's emission accounted for (closure), "
+                                         "so that energy is conserved exactly on every mesh; collocated: the rows as "
+                                         "collocated at the nodes, whose energy balance is off by the mesh's "
+                                         "reciprocity defect (for comparison)")
+                          ->check(CLI::IsMember({"reciprocal", "collocated"})));
 }
 
 ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
@@ -46,6 +53,7 @@ ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
   r.tolerance_percent = o.tolerance;
   r.element_size = o.element_size;
   r.max_refinements = o.max_refinements;
+  r.reciprocal_transport = o.transport == "reciprocal";
   return r;
 }
 
@@ -139,9 +147,33 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"escaping_flux", r.flux_escaping},
       {"relative_mismatch", r.balance_mismatch},
       {"how",
-       unit + ": what the sky and far ground put on all surfaces = what they absorb + what leaves "
-       "them unreceived, the last from each side's own view of the others (reciprocity), independently of the rows "
-       "that carried the light; the mismatch is the mesh's and falls under refinement"}};
+       unit + ": what the sky and far ground put on all surfaces (each element side's first bounce by the nodes' "
+       "degree-2 rule) = what they absorb + what leaves them unreceived (each node's exitance times the part of its "
+       "view that meets no element). " +
+       (opt.transport == "reciprocal"
+            ? std::string("The transport is reciprocal and closed (see transport), so the discrete system conserves "
+                          "energy and the mismatch is the solver's roundoff; the collocation's own reciprocity "
+                          "defect, which the correction removed, is given beside it")
+            : std::string("The transport is as collocated at the nodes: the mismatch is the mesh's reciprocity "
+                          "defect and falls under refinement"))}};
+  if (opt.transport == "reciprocal")
+    j["energy_balance"]["transport"] = {
+        {"reciprocal", true},
+        {"collocation_reciprocity_defect", r.reciprocity.reciprocity_defect},
+        {"max_relative_exchange_change", r.reciprocity.max_entry_change},
+        {"max_escaping_fraction_change", r.reciprocity.max_row_change},
+        {"exchanges", r.reciprocity.entries},
+        {"exchanges_added", r.reciprocity.entries_added},
+        {"conjugate_gradient_iterations", r.reciprocity.iterations},
+        {"closure_residual", r.reciprocity.residual},
+        {"how",
+         "the exchanges w_u K_uj between nodes (w = element area / 3) replaced by the symmetric ones nearest to "
+         "them, relative change (lambda_u + lambda_j) per exchange, each node's row plus what escapes it kept equal "
+         "to its weight (a node that sees no opening keeps its row sum exactly), in the manner of the least-squares "
+         "smoothing of exchange areas in zonal methods (Larsen and Howell 1986); defect: max over nodes of "
+         "|sum_j (S_uj - G_uj)| / w_u"}};
+  else
+    j["energy_balance"]["transport"] = {{"reciprocal", false}};
   j["left_out"] = {
       {"direct_sky_at_sensors", "sensors see the sky through the apertures only (SC); a sensor outside the model "
                                 "sees no sky directly"},

@@ -15,6 +15,7 @@
 #include "simulation/element_transport.hpp"
 #include "simulation/pane_transmittance.hpp"
 #include "simulation/radiosity_solver.hpp"
+#include "simulation/reciprocal_transport.hpp"
 #include "simulation/sensor_loop.hpp"
 
 namespace daylit {
@@ -645,11 +646,15 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
   std::vector<ReceiverRow> rows = node_rows(t, scratch);
   RadiositySystem sys;
   sys.mesh = t.mesh();
+  std::vector<double> weight;
   for (std::size_t u = 0; u < rows.size(); ++u) {
     sys.first_bounce.push_back(rows[u].first_bounce);
     sys.reflectance.push_back(sys.mesh.surfaces[sys.mesh.elements[u / 6].surface].reflectance);
-    sys.rows.push_back(std::move(rows[u].row));
+    sys.collocated_rows.push_back(std::move(rows[u].row));
+    weight.push_back(sys.mesh.elements[u / 6].area / 3);
   }
+  sys.rows = sys.collocated_rows;
+  if (opt.reciprocal_transport) sys.reciprocity = make_reciprocal(sys.rows, weight);
   return sys;
 }
 
@@ -680,25 +685,29 @@ struct MeshSolution {
   int sweeps = 0;
   double solver_change = 0;
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0;
+  ReciprocityReport reciprocity;
 };
 
-MeshSolution solve_mesh(const Transport& t, ReflectionResult& result, const ProgressCallback& progress) {
+MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress) {
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
   std::vector<ReceiverRow> rows = node_rows(t, result, progress);
-  std::vector<double> rho(nu), source(nu);
+  std::vector<double> rho(nu), source(nu), weight(nu, 0.0);
   std::vector<TransportRow> k_rows(nu);
   for (std::size_t u = 0; u < nu; ++u) {
-    const double r = mesh.surfaces[mesh.elements[u / 6].surface].reflectance;
+    const RadiosityElement& el = mesh.elements[u / 6];
+    const double r = mesh.surfaces[el.surface].reflectance;
     rho[u] = r;
     source[u] = r * rows[u].first_bounce;
     k_rows[u] = std::move(rows[u].row);
+    if (t.live(el.surface, int(u / 3 % 2))) weight[u] = el.area / 3;
   }
+  MeshSolution out;
+  if (reciprocal) out.reciprocity = make_reciprocal(k_rows, weight);
   RadiositySolution sol = solve_radiosity(k_rows, rho, source);
   if (!sol.converged)
     throw Error("the radiosity solution did not converge (" + std::to_string(sol.sweeps) +
                 " sweeps): the model's surfaces may overlap (coincident polygons facing the same way count twice)");
-  MeshSolution out;
   out.sweeps = sol.sweeps;
   out.solver_change = sol.last_change;
   out.exitance = std::move(sol.exitance);
@@ -838,7 +847,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   const auto rows_stage = [&](const std::string& name) {
     return stage_progress(opt, name, "element sides", 2 * t.mesh().elements.size());
   };
-  MeshSolution coarse = solve_mesh(t, result, rows_stage("radiosity: the coarse mesh's rows"));
+  MeshSolution coarse = solve_mesh(t, opt.reciprocal_transport, result, rows_stage("radiosity: the coarse mesh's rows"));
   for (int round = 0;; ++round) {
     const RadiosityMesh coarse_mesh = t.mesh();
     t.split_all();
@@ -852,7 +861,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       name += "'s";
     }
     name += " rows";
-    MeshSolution fine = solve_mesh(t, result, rows_stage(name));
+    MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name));
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
     const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result,
@@ -878,6 +887,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     result.flux_first_bounce = fine.flux_first_bounce;
     result.flux_absorbed = fine.flux_absorbed;
     result.flux_escaping = fine.flux_escaping;
+    result.reciprocity = fine.reciprocity;
     const double first = fine.flux_first_bounce;
     result.balance_mismatch = first > 0 ? (first - fine.flux_absorbed - fine.flux_escaping) / first : 0;
     if (worst <= opt.tolerance_percent || round >= opt.max_refinements || result.elements == 0) break;
@@ -940,6 +950,12 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
         }
       });
   for (const auto& l : row_locals) op.counters += l;
+  if (opt.reciprocal_transport) {
+    std::vector<double> weight(nu, 0.0);
+    for (std::size_t u = 0; u < nu; ++u)
+      if (index[u] >= 0) weight[u] = mesh.elements[u / 6].area / 3;
+    op.reciprocity = make_reciprocal(rows, weight);
+  }
 
   // (I − ρK)ᵀ, factorised in place.
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(Eigen::Index(n), Eigen::Index(n));

@@ -19,7 +19,10 @@
 //   difference is what is seen through those apertures (ERC at sensors), weighted by their
 //   transmittance (glass: T(μ) at the direction of the element's centroid, whose spread over the
 //   element's vertices is counted in the error estimate).
-//   Solve: M = ρ (E₀ + K M) by Gauss–Seidel to roundoff.
+//   Reciprocity: the collocated K is replaced by the nearest K' whose exchanges w_u K'_uj are
+//   symmetric and whose rows keep every node's emission accounted for (reciprocal_transport.hpp),
+//   so that the discrete system conserves energy exactly on every mesh.
+//   Solve: M = ρ (E₀ + K' M) by Gauss–Seidel to roundoff.
 //   Error: each round solves two meshes, a coarse one (elements twice the asked size) and its
 //   uniform split, and reports the finer solution; every sensor's estimate is the difference of
 //   the two (ERC and IRC each) plus, through glass, the spread of T(μ) over each element's
@@ -43,6 +46,7 @@
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "simulation/radiosity_mesh.hpp"
+#include "simulation/reciprocal_transport.hpp"
 #include "simulation/sky_component.hpp"
 #include "sky/sky_model.hpp"
 
@@ -65,6 +69,9 @@ struct ReflectionOptions {
   double element_size = 0;
   double grading = 0.5;              // farther away: edge ≤ grading × distance to them
   int max_refinements = 0;           // further rounds of uniform splitting while the tolerance is not met
+  // The transport made reciprocal and closed (reciprocal_transport.hpp); false: the collocated
+  // rows as computed, whose energy balance is off by the mesh's reciprocity defect (for audits).
+  bool reciprocal_transport = true;
   // Called now and then with a stage's name ("radiosity: the mesh's rows", …), what it counts
   // ("element sides", "sensors"), how many are done and their number, from one thread at a time:
   // for a progress bar over the whole run.
@@ -97,6 +104,7 @@ struct ReflectionResult {
   // far ground. The last is integrated independently: the exitance that leaves each element side
   // minus what other elements receive from it, through the transport of the receivers' nodes.
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0, balance_mismatch = 0;
+  ReciprocityReport reciprocity;       // of the reported mesh's transport (zeros where not made reciprocal)
   std::vector<double> error_by_round;  // max sensor estimate after each round
   double element_size = 0;             // as used (the asked one, or the automatic one)
   VisibilityCounters counters;
@@ -111,11 +119,13 @@ double automatic_element_size(const Scene& scene, const std::vector<const Sensor
 // The discrete system of a scene at its first mesh (elements of the asked size, both sides of
 // every surface, whether or not light from them reaches a sensor), for tests and audits: the mesh, and per
 // unknown (6 per element: side 0 along the element's normal, then side 1, three nodes each) the
-// first bounce E₀ at its node, its surface's reflectance and its row of K.
+// first bounce E₀ at its node, its surface's reflectance, its row of K as collocated and as solved
+// (made reciprocal, with options.reciprocal_transport; every unknown of weight area/3).
 struct RadiositySystem {
   RadiosityMesh mesh;
   std::vector<double> first_bounce, reflectance;
-  std::vector<std::vector<std::pair<std::uint32_t, double>>> rows;
+  std::vector<TransportRow> collocated_rows, rows;
+  ReciprocityReport reciprocity;
 };
 RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& reflectance,
                                  const VisibilityEngine& engine, const std::vector<const SensorGrid*>& grids,
@@ -158,6 +168,7 @@ struct ReflectionOperator {
   std::size_t elements = 0;
   double element_size = 0;           // as used
   std::size_t sides_solved = 0, sides_left_out = 0;
+  ReciprocityReport reciprocity;
   VisibilityCounters counters;
 };
 // The mesh is reflected_components' reported one (the uniform split of a mesh of elements twice
