@@ -38,6 +38,12 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "Further rounds of splitting every element while the tolerance is not met "
                                          "(default 0)")
                           ->check(CLI::Range(0, 8)));
+  o.options.push_back(command.add_option("--element-grading", o.grading,
+                                         "How fast elements grow away from the sensors and apertures: an element at "
+                                         "distance d from them has edges up to max(element size, grading x d) "
+                                         "(default 0.5); smaller values refine the far surfaces too, for convergence "
+                                         "studies")
+                          ->check(CLI::Range(0.01, 10.0)));
   o.options.push_back(command.add_option("--reflection-transport", o.transport,
                                          "reciprocal (default): the collocated transport between elements made "
                                          "symmetric (reciprocity) with every node's emission accounted for (closure), "
@@ -53,6 +59,7 @@ ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
   r.tolerance_percent = o.tolerance;
   r.element_size = o.element_size;
   r.max_refinements = o.max_refinements;
+  r.grading = o.grading;
   r.reciprocal_transport = o.transport == "reciprocal";
   return r;
 }
@@ -128,6 +135,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
                {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
                {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
                                                         : "automatic: a fifth of the longest side of the box around a grid's sensors (the median over the grids)"},
+               {"grading", opt.grading},
                {"max_error_percent_by_round", r.error_by_round}};
   j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
                  {"reflectance_max", r.reflectance_max}};

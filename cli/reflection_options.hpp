@@ -1,7 +1,7 @@
 #pragma once
 // The reflected components' command-line options, shared by `daylit df` and `daylit
 // illuminance`: --components, --ground-reflectance, --reflection-tolerance, --element-size,
-// --max-refinements and --reflection-transport; what they become for simulation/reflected_components.hpp; the summary's
+// --max-refinements, --element-grading and --reflection-transport; what they become for simulation/reflected_components.hpp; the summary's
 // `components` section; the notice for options given where they do not apply.
 
 #include <CLI/CLI.hpp>
@@ -28,6 +28,7 @@ struct ReflectionCliOptions {
   double tolerance = 0.05;  // percentage points of E_out (DF points), every sensor's ERC + IRC
   double element_size = 0;  // model units; 0: automatic (reflected_components.hpp)
   int max_refinements = 0;
+  double grading = 0.5;     // farther from the sensors and apertures: edge ≤ grading × distance
   std::string transport = "reciprocal";  // or "collocated" (reciprocal_transport.hpp)
   std::vector<const CLI::Option*> options;  // those beside --components, for the notice
 

@@ -799,7 +799,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 
 namespace {
 
-// The inputs checked (check_inputs, and a finite element size ≥ 0) and the element size resolved
+// The inputs checked (check_inputs, a finite element size ≥ 0 and a positive grading) and the element size resolved
 // (0: automatic_element_size); rho_max: the largest reflectance.
 ReflectionOptions checked_options(const Scene& scene, const std::vector<double>& reflectance,
                                   const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options,
@@ -808,6 +808,12 @@ ReflectionOptions checked_options(const Scene& scene, const std::vector<double>&
   if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
     std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
     message += std::to_string(options.element_size);
+    message += " is not a positive number";
+    throw Error(message);
+  }
+  if (!(options.grading > 0) || !std::isfinite(options.grading)) {
+    std::string message = "element grading ";
+    message += std::to_string(options.grading);
     message += " is not a positive number";
     throw Error(message);
   }

@@ -69,6 +69,20 @@ expect_failure "mirror" "mirror 'wall_mat'" --components all --scene "$work/mirr
   --grid "$samples/room/grid.pts"
 expect_failure "ground reflectance 1" "ground-reflectance" "${room[@]}" --components all --ground-reflectance 1
 expect_failure "gradient with reflections" "components sc" "${room[@]}" --components all --gradient
+expect_failure "element grading 0" "element-grading" "${room[@]}" --components all --element-grading 0
+
+# --element-grading: far elements grow as grading x distance; a smaller grading meshes the far
+# surfaces (the room's back half, the walls above the sensors) finer, and the summary says so.
+"$daylit" df "${room[@]}" --components all --max-refinements 0 --threads 2 --element-size 1.5 --element-grading 2 --out "$work/grading2.csv" --summary "$work/grading2.json" --quiet ||
+  fail "df --element-grading 2"
+"$daylit" df "${room[@]}" --components all --max-refinements 0 --threads 2 --element-size 1.5 --element-grading 0.25 --out "$work/grading025.csv" --summary "$work/grading025.json" --quiet ||
+  fail "df --element-grading 0.25"
+python3 - "$work/grading2.json" "$work/grading025.json" <<'PY' || fail "element grading"
+import json, sys
+coarse, fine = (json.load(open(f))["components"]["mesh"] for f in sys.argv[1:])
+assert coarse["grading"] == 2 and fine["grading"] == 0.25, (coarse, fine)
+assert fine["elements"] > coarse["elements"], (coarse["elements"], fine["elements"])
+PY
 # With --components sc a mirror is no obstacle: its reflectance is not used.
 "$daylit" df --scene "$work/mirror.rad" --apertures "$samples/room/apertures.rad" --grid "$samples/room/grid.pts" \
   --components sc --out "$work/mirror-sc.csv" --quiet || fail "mirror with --components sc"
