@@ -45,11 +45,12 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "studies")
                           ->check(CLI::Range(0.01, 10.0)));
   o.options.push_back(command.add_option("--reflection-transport", o.transport,
-                                         "reciprocal (default): the collocated transport between elements made "
-                                         "symmetric (reciprocity) with every node's emission accounted for (closure), "
-                                         "so that energy is conserved exactly on every mesh; collocated: the rows as "
-                                         "collocated at the nodes, whose energy balance is off by the mesh's "
-                                         "reciprocity defect (for comparison)")
+                                         "collocated (default): the transport between elements as collocated at the "
+                                         "nodes, whose energy balance is off by the mesh's reciprocity defect (reported, "
+                                         "falling under refinement); reciprocal: made symmetric (reciprocity) with every "
+                                         "node's emission accounted for (closure), so that energy is conserved to "
+                                         "roundoff on every mesh, but on meshes coarse against the geometry farther "
+                                         "from path-traced references (README)")
                           ->check(CLI::IsMember({"reciprocal", "collocated"})));
 }
 
