@@ -33,6 +33,7 @@ EXTERIOR = ("overhang_", "opposite_", "ground")  # polygon names (prefixes) outs
 VARIANTS = {
     "sample": ((), (), False),
     "window_open": ((), (), True),
+    "window_open_reveals_black": ((), ("frame_mat",), True),
     "no_exterior": (EXTERIOR, (), False),
     "no_exterior_open": (EXTERIOR, (), True),
     "no_exterior_open_reveals_black": (EXTERIOR, ("frame_mat",), True),
