@@ -41,6 +41,8 @@ VARIANTS = {
     "overhang_only_exterior": (("opposite_", "ground"), (), False),
     "opposite_only_exterior": (("overhang_", "ground"), (), False),
     "ceiling_only_inside_open": ((), ("floor_mat", "wall_mat", "frame_mat"), True),
+    "reveals_only_inside_open": ((), ("floor_mat", "wall_mat", "ceiling_mat"), True),
+    "reveals_only_exterior_black_open": ((), ("floor_mat", "wall_mat", "ceiling_mat", "facade_mat", "ground_mat"), True),
     "walls_only_inside_open": ((), ("floor_mat", "ceiling_mat", "frame_mat"), True),
     "walls_only_inside_no_exterior_open": (EXTERIOR, ("floor_mat", "ceiling_mat", "frame_mat"), True),
     "floor_ceiling_only_no_exterior_open": (EXTERIOR, ("wall_mat", "frame_mat"), True),
