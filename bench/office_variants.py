@@ -43,6 +43,8 @@ VARIANTS = {
     "ceiling_only_inside_open": ((), ("floor_mat", "wall_mat", "frame_mat"), True),
     "reveals_only_inside_open": ((), ("floor_mat", "wall_mat", "ceiling_mat"), True),
     "reveals_only_exterior_black_open": ((), ("floor_mat", "wall_mat", "ceiling_mat", "facade_mat", "ground_mat"), True),
+    "reveals_only_ground_only_exterior_open": (("overhang_", "opposite_"), ("floor_mat", "wall_mat", "ceiling_mat"), True),
+    "reveals_only_overhang_only_exterior_open": (("opposite_", "ground"), ("floor_mat", "wall_mat", "ceiling_mat"), True),
     "walls_only_inside_open": ((), ("floor_mat", "ceiling_mat", "frame_mat"), True),
     "walls_only_inside_no_exterior_open": (EXTERIOR, ("floor_mat", "ceiling_mat", "frame_mat"), True),
     "floor_ceiling_only_no_exterior_open": (EXTERIOR, ("wall_mat", "frame_mat"), True),
