@@ -22,7 +22,6 @@ import argparse
 import csv
 import math
 import os
-import re
 import subprocess
 import sys
 

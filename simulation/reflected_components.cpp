@@ -805,18 +805,15 @@ ReflectionOptions checked_options(const Scene& scene, const std::vector<double>&
                                   const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options,
                                   double& rho_max) {
   rho_max = check_inputs(scene, reflectance, options);
-  if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) {
-    std::string message = "element size ";  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
-    message += std::to_string(options.element_size);
+  const auto refuse = [](const char* what, double value) {
+    std::string message = what;  // appended: GCC 12 warns falsely (-Wrestrict) on a chain of +
+    message += ' ';
+    message += std::to_string(value);
     message += " is not a positive number";
     throw Error(message);
-  }
-  if (!(options.grading > 0) || !std::isfinite(options.grading)) {
-    std::string message = "element grading ";
-    message += std::to_string(options.grading);
-    message += " is not a positive number";
-    throw Error(message);
-  }
+  };
+  if (!(options.element_size >= 0) || !std::isfinite(options.element_size)) refuse("element size", options.element_size);
+  if (!(options.grading > 0) || !std::isfinite(options.grading)) refuse("element grading", options.grading);
   ReflectionOptions opt = options;
   if (opt.element_size == 0) opt.element_size = automatic_element_size(scene, grids);
   return opt;
