@@ -609,7 +609,7 @@ struct VisibilityEngine::Impl {
       }
       for (int i = node.first; i < node.first + node.count; ++i) {
         const ConvexPiece& o = occluders[order[i]];
-        if (o.source == options.excluded_occluder) continue;
+        if (o.source == options.excluded_occluder || o.source == options.receiver_occluder) continue;
         if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(occluder_boxes[order[i]], pl, p); })) {
           ++counters.occluders_box_culled;
           continue;

@@ -84,6 +84,11 @@ struct VisibilityOptions {
   // that a surface does not hide itself. kNoOccluder: every occluder blocks.
   static constexpr std::size_t kNoOccluder = std::size_t(-1);
   std::size_t excluded_occluder = kNoOccluder;
+  // The occluder the receiver lies on (kNoOccluder: none), which does not block either. A point
+  // of a polygon computed in floating point lies off its plane by roundoff, on either side: one
+  // behind it (measured: two of every three nodes of the office's window jambs, x = 0.8 − 1 ulp)
+  // would see its own polygon in front of it, covering the whole hemisphere it faces.
+  std::size_t receiver_occluder = kNoOccluder;
   // Whether occluders beyond the aperture's plane (seen from the receiver) block: true for skies,
   // whose light comes from beyond the window; false for luminaires, which nothing behind them can
   // hide. With false the region is exactly the directions to points x of the aperture whose open

@@ -298,11 +298,13 @@ class Transport {
   template <class Sink>
   void transport(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n, std::size_t own_surface,
                  VisibilityCounters& counters, Sink&& sink) const {
-    // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself
-    // (the receiver's own polygon lies in the receiver's tangent plane and casts no shadow).
+    // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself.
+    // Nor does the receiver's own polygon, in whose plane it lies: a node is a rounding off it,
+    // and one behind it would otherwise see nothing but its own polygon (VisibilityOptions).
     VisibilityOptions opt;
     opt.clip_to_horizon = false;
     opt.occluders_beyond = false;
+    if (own_surface < mesh.surfaces.size()) opt.receiver_occluder = mesh.surfaces[own_surface].occluder;
     for (std::size_t s = 0; s < mesh.surfaces.size(); ++s) {
       if (s == own_surface) continue;
       const RadiositySurface& surf = mesh.surfaces[s];
