@@ -7,15 +7,18 @@ away (the glazing, the exterior surfaces, some interior reflectances), and how t
 the elements are halved. This script makes those variants from samples/office, runs
 `daylit bench reflections` on each (its office case: every 30th sensor of grid.pts against a
 path-traced run, N = 65,536, B = 16) and `daylit df --components all` on the same sensors at each
-element size, and writes one row per variant and size:
+element size, and writes one row per variant and size to office_variants_<transport>.csv:
 
-    variant, element_size, grading, reference_irc_percent, reference_irc_standard_error,
-    radiosity_irc_percent, relative_difference, sensors_covered
+    variant, transport, element_size, grading, reference_irc_percent, reference_irc_standard_error,
+    radiosity_irc_percent, relative_difference, rms_difference, sensors_covered
 
-(sensors_covered: where |radiosity - reference| of ERC + IRC <= the estimate + 2 standard errors).
-About 2-3 minutes per variant for the reference and 0.5-3 minutes per radiosity run on 2 cores.
+(rms_difference: of ERC + IRC against the reference over the sensors, DF points; sensors_covered:
+where |radiosity - reference| of ERC + IRC <= the estimate + 2 standard errors). About 2-3 minutes
+per variant for the reference (kept and reused with --reuse-references) and 0.5-3 minutes per
+radiosity run on 2 cores.
 
     bench/office_variants.py --daylit build/bin/daylit --out /tmp/office_variants [--variants a,b]
+        [--transport collocated|reciprocal] [--reuse-references]
 """
 
 import argparse
@@ -109,18 +112,19 @@ def compare(reference_csv, radiosity_csv):
     rad = list(csv.DictReader(open(radiosity_csv)))
     if len(ref) != len(rad):
         sys.exit(f"{radiosity_csv}: {len(rad)} sensors against the reference's {len(ref)}")
-    covered = 0
+    covered, squares = 0, 0.0
     for a, b in zip(rad, ref):
         if abs(float(a["x"]) - float(b["x"])) > 1e-9 or abs(float(a["y"]) - float(b["y"])) > 1e-9:
             sys.exit(f"{radiosity_csv}: sensor {a['index']} is not the reference's")
         diff = float(a["erc_percent"]) + float(a["irc_percent"]) - float(b["erc_percent"]) - float(b["irc_percent"])
         sigma = math.hypot(float(b["erc_se"]), float(b["irc_se"]))
         covered += abs(diff) <= float(a["reflection_error_estimate_percent"]) + 2 * sigma
+        squares += diff * diff
     n = len(ref)
     ref_irc = sum(float(b["irc_percent"]) for b in ref) / n
     ref_se = math.sqrt(sum(float(b["irc_se"]) ** 2 for b in ref)) / n
     irc = sum(float(a["irc_percent"]) for a in rad) / n
-    return ref_irc, ref_se, irc, covered, n
+    return ref_irc, ref_se, irc, math.sqrt(squares / n), covered, n
 
 
 def main():
@@ -132,6 +136,9 @@ def main():
     parser.add_argument("--sizes", default="1.18,0.59", help="element sizes (model units)")
     parser.add_argument("--grading", type=float, default=0.5)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--transport", choices=("collocated", "reciprocal"), default="collocated")
+    parser.add_argument("--reuse-references", action="store_true",
+                        help="keep a variant's reference from an earlier run of the same --out")
     args = parser.parse_args()
     rows = []
     for name in args.variants.split(","):
@@ -140,21 +147,24 @@ def main():
         out = os.path.join(args.out, name)
         make_variant(args.samples, out, *VARIANTS[name])
         bench = os.path.join(out, "bench")
-        subprocess.run([args.daylit, "bench", "reflections", "--samples", out, "--out", bench, "--quiet"], check=True)
+        reference = os.path.join(bench, "reflections_reference.csv")
+        if not (args.reuse_references and os.path.exists(reference)):
+            subprocess.run([args.daylit, "bench", "reflections", "--samples", out, "--out", bench, "--quiet"], check=True)
         office = os.path.join(out, "office")
         for size in args.sizes.split(","):
-            result = os.path.join(out, f"radiosity_{size}.csv")
+            result = os.path.join(out, f"radiosity_{args.transport}_{size}.csv")
             subprocess.run([args.daylit, "df", "--scene", os.path.join(office, "scene.rad"), "--apertures",
                             os.path.join(office, "apertures.rad"), "--grid", os.path.join(out, "every30.pts"),
                             "--components", "all", "--element-size", size, "--element-grading", str(args.grading),
+                            "--reflection-transport", args.transport,
                             "--threads", str(args.threads), "--quiet", "--out", result], check=True)
-            ref_irc, ref_se, irc, covered, n = compare(os.path.join(bench, "reflections_reference.csv"), result)
-            rows.append([name, size, args.grading, f"{ref_irc:.5f}", f"{ref_se:.5f}", f"{irc:.5f}",
-                         f"{irc / ref_irc - 1:+.4f}" if ref_irc > 0 else "", f"{covered}/{n}"])
+            ref_irc, ref_se, irc, rms, covered, n = compare(reference, result)
+            rows.append([name, args.transport, size, args.grading, f"{ref_irc:.5f}", f"{ref_se:.5f}", f"{irc:.5f}",
+                         f"{irc / ref_irc - 1:+.4f}" if ref_irc > 0 else "", f"{rms:.4f}", f"{covered}/{n}"])
             print(",".join(map(str, rows[-1])), flush=True)
-    with open(os.path.join(args.out, "office_variants.csv"), "w") as f:
-        f.write("variant,element_size,grading,reference_irc_percent,reference_irc_standard_error,"
-                "radiosity_irc_percent,relative_difference,sensors_covered\n")
+    with open(os.path.join(args.out, f"office_variants_{args.transport}.csv"), "w") as f:
+        f.write("variant,transport,element_size,grading,reference_irc_percent,reference_irc_standard_error,"
+                "radiosity_irc_percent,relative_difference,rms_difference,sensors_covered\n")
         for r in rows:
             f.write(",".join(map(str, r)) + "\n")
 

@@ -45,12 +45,11 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "studies")
                           ->check(CLI::Range(0.01, 10.0)));
   o.options.push_back(command.add_option("--reflection-transport", o.transport,
-                                         "collocated (default): the transport between elements as collocated at the "
-                                         "nodes, whose energy balance is off by the mesh's reciprocity defect (reported, "
-                                         "falling under refinement); reciprocal: made symmetric (reciprocity) with every "
-                                         "node's emission accounted for (closure), so that energy is conserved to "
-                                         "roundoff on every mesh, but on meshes coarse against the geometry farther "
-                                         "from path-traced references (README)")
+                                         "reciprocal (default): the transport between elements as collocated at the "
+                                         "nodes, made symmetric (reciprocity) with every node's emission accounted for "
+                                         "(closure), so that energy is conserved to roundoff on every mesh; collocated: "
+                                         "the rows as collocated, whose energy balance is off by the mesh's reciprocity "
+                                         "defect (reported, falling under refinement), for comparison")
                           ->check(CLI::IsMember({"reciprocal", "collocated"})));
 }
 
@@ -150,6 +149,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
        "glass, the spread of T over each element's directions times what it gives. It covers the error where halving "
        "the elements at least halves it; linear elements do better (second order where the exitance is smooth), so "
        "the actual error is usually a fraction of it"}};
+  const bool reciprocal = opt.transport == "reciprocal";
   j["energy_balance"] = {
       {"first_bounce_flux", r.flux_first_bounce},
       {"absorbed_flux", r.flux_absorbed},
@@ -159,13 +159,13 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
        unit + ": what the sky and far ground put on all surfaces (each element side's first bounce by the nodes' "
        "degree-2 rule) = what they absorb + what leaves them unreceived (each node's exitance times the part of its "
        "view that meets no element). " +
-       (opt.transport == "reciprocal"
+       (reciprocal
             ? std::string("The transport is reciprocal and closed (see transport), so the discrete system conserves "
                           "energy and the mismatch is the solver's roundoff; the collocation's own reciprocity "
                           "defect, which the correction removed, is given beside it")
             : std::string("The transport is as collocated at the nodes: the mismatch is the mesh's reciprocity "
                           "defect and falls under refinement"))}};
-  if (opt.transport == "reciprocal")
+  if (reciprocal)
     j["energy_balance"]["transport"] = {
         {"reciprocal", true},
         {"collocation_reciprocity_defect", r.reciprocity.reciprocity_defect},

@@ -29,7 +29,7 @@ struct ReflectionCliOptions {
   double element_size = 0;  // model units; 0: automatic (reflected_components.hpp)
   int max_refinements = 0;
   double grading = 0.5;     // farther from the sensors and apertures: edge ≤ grading × distance
-  std::string transport = "collocated";  // or "reciprocal" (reciprocal_transport.hpp)
+  std::string transport = "reciprocal";  // or "collocated" (reciprocal_transport.hpp)
   std::vector<const CLI::Option*> options;  // those beside --components, for the notice
 
   bool all() const { return components == "all"; }

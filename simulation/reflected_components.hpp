@@ -19,16 +19,14 @@
 //   difference is what is seen through those apertures (ERC at sensors), weighted by their
 //   transmittance (glass: T(μ) at the direction of the element's centroid, whose spread over the
 //   element's vertices is counted in the error estimate).
-//   Reciprocity (an option, reciprocal_transport): the collocated K replaced by the nearest K'
+//   Reciprocity (the default, reciprocal_transport): the collocated K replaced by the nearest K'
 //   whose exchanges w_u K'_uj are symmetric and whose rows keep every node's emission accounted
 //   for (reciprocal_transport.hpp), so that the discrete system conserves energy exactly on every
-//   mesh. Not the default: against path-traced references it moves the IRC away from them where
-//   the mesh is coarse against the geometry (the office sample's room with its 0.3 m window
-//   reveals under 1.2 m elements, exterior left out: mean IRC 1.9 % below a path-traced
-//   reference, the collocated rows 0.5 %; README, 2026-12-03), because
-//   the symmetric exchange averages in the one-point receiver quadrature of the larger element.
-//   The collocated rows' energy mismatch is reported instead (their reciprocity defect, O(h²)).
-//   Solve: M = ρ (E₀ + K M) by Gauss–Seidel to roundoff.
+//   mesh. Against path-traced references it is as close as the collocated rows (the office
+//   sample's mean IRC −0.12 % against −0.22 %, its room alone −0.21 % against −0.08 %, the room
+//   sample within 0.03 % of them; README, 2026-12-03). Without it the collocated rows' energy
+//   mismatch is reported (their reciprocity defect, O(h²)).
+//   Solve: M = ρ (E₀ + K' M) by Gauss–Seidel to roundoff.
 //   Error: each round solves two meshes, a coarse one (elements twice the asked size) and its
 //   uniform split, and reports the finer solution; every sensor's estimate is the difference of
 //   the two (ERC and IRC each) plus, through glass, the spread of T(μ) over each element's
@@ -75,10 +73,10 @@ struct ReflectionOptions {
   double element_size = 0;
   double grading = 0.5;              // farther away: edge ≤ grading × distance to them
   int max_refinements = 0;           // further rounds of uniform splitting while the tolerance is not met
-  // false: the rows as collocated at the nodes, whose energy balance is off by the mesh's
-  // reciprocity defect (reported); true: made reciprocal and closed (reciprocal_transport.hpp),
-  // conserving energy to roundoff on every mesh at some cost in accuracy on coarse meshes (above).
-  bool reciprocal_transport = false;
+  // true: the collocated rows made reciprocal and closed (reciprocal_transport.hpp), conserving
+  // energy to roundoff on every mesh; false: the rows as collocated at the nodes, whose energy
+  // balance is off by the mesh's reciprocity defect (reported).
+  bool reciprocal_transport = true;
   // Called now and then with a stage's name ("radiosity: the mesh's rows", …), what it counts
   // ("element sides", "sensors"), how many are done and their number, from one thread at a time:
   // for a progress bar over the whole run.

@@ -233,7 +233,7 @@ void check_closed_enclosure(const Scene& scene, double element_size, const std::
   const VisibilityEngine engine(scene, GeometryMode::exact);
   ReflectionOptions o;
   o.element_size = element_size;
-  o.reciprocal_transport = true;  // what is checked (the default rows are as collocated)
+  o.reciprocal_transport = true;  // what is checked (the default, stated: the rows as collocated are not reciprocal)
   const double rho = 0.7;
   const RadiositySystem sys = radiosity_system(scene, std::vector<double>(scene.occluders.size(), rho), engine, {}, o);
   REQUIRE(sys.rows.size() == 6 * sys.mesh.elements.size());
@@ -432,7 +432,7 @@ TEST_CASE("reflected components: a black scene does no radiosity work") {
 
 namespace {
 
-// The transport by default as reflected_components' default (the collocated rows).
+// The transport by default as reflected_components' default (the reciprocal rows).
 ReflectionResult solve_room(const WindowRoom& room, double element_size, int refinements = 0,
                             bool reciprocal = ReflectionOptions{}.reciprocal_transport) {
   const VisibilityEngine engine(room.scene, GeometryMode::exact);
