@@ -298,16 +298,30 @@ class Transport {
   template <class Sink>
   void transport(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n, std::size_t own_surface,
                  VisibilityCounters& counters, Sink&& sink) const {
+    const RadiosityMesh* meshes[] = {&mesh};
+    transport(meshes, x, n, own_surface, counters,
+              [&](std::size_t, std::size_t e, int side, const std::array<double, 3>& c, bool through, double spread) {
+                sink(e, side, c, through, spread);
+              });
+  }
+
+  // The same for several meshes of the same surfaces at once (a coarse mesh and its split, for the
+  // error estimate): sink(m, element, side, c, through, spread) for meshes[m]. What is visible of a
+  // surface does not depend on how it is meshed, so each surface's regions are found once.
+  template <std::size_t N, class Sink>
+  void transport(const RadiosityMesh* const (&meshes)[N], const Vec3& x, const Vec3& n, std::size_t own_surface,
+                 VisibilityCounters& counters, Sink&& sink) const {
     // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself.
     // Nor does the receiver's own polygon, in whose plane it lies: a node is a rounding off it,
     // and one behind it would otherwise see nothing but its own polygon (VisibilityOptions).
     VisibilityOptions opt;
     opt.clip_to_horizon = false;
     opt.occluders_beyond = false;
-    if (own_surface < mesh.surfaces.size()) opt.receiver_occluder = mesh.surfaces[own_surface].occluder;
-    for (std::size_t s = 0; s < mesh.surfaces.size(); ++s) {
+    const std::vector<RadiositySurface>& surfaces = meshes[0]->surfaces;
+    if (own_surface < surfaces.size()) opt.receiver_occluder = surfaces[own_surface].occluder;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
       if (s == own_surface) continue;
-      const RadiositySurface& surf = mesh.surfaces[s];
+      const RadiositySurface& surf = surfaces[s];
       const double facing = dot(surf.normal, x - surf.point);
       // In the surface's plane, up to roundoff (coplanar surfaces): nothing passes between them.
       if (std::abs(facing) <= kSideMargin * scale_) continue;
@@ -322,19 +336,24 @@ class Transport {
       const SphericalRegion inside = inside_->visible_region(x, n, s, counters, opt);
       const bool inside_free = counters.pairs_clipped == clipped;
       // Seen whole (nothing clipped): the elements' shared edges are computed once.
-      thread_local std::vector<std::array<double, 3>> inside_c;
-      if (inside.empty()) {
-        inside_c.assign(surf.elements.size(), {0.0, 0.0, 0.0});
-      } else if (inside_free) {
-        unobstructed_surface_coefficients(mesh, s, x, n, inside_c);
-      } else {
-        inside_c.resize(surf.elements.size());
-        for (std::size_t i = 0; i < surf.elements.size(); ++i) {
-          const RadiosityElement& el = mesh.elements[surf.elements[i]];
-          inside_c[i] = element_irradiance_coefficients(element_region(inside, false, el, x, n), el, x, n);
+      thread_local std::vector<std::array<double, 3>> inside_cs[N];
+      for (std::size_t m = 0; m < N; ++m) {
+        const RadiosityMesh& mesh = *meshes[m];
+        const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
+        std::vector<std::array<double, 3>>& inside_c = inside_cs[m];
+        if (inside.empty()) {
+          inside_c.assign(elements.size(), {0.0, 0.0, 0.0});
+        } else if (inside_free) {
+          unobstructed_surface_coefficients(mesh, s, x, n, inside_c);
+        } else {
+          inside_c.resize(elements.size());
+          for (std::size_t i = 0; i < elements.size(); ++i) {
+            const RadiosityElement& el = mesh.elements[elements[i]];
+            inside_c[i] = element_irradiance_coefficients(element_region(inside, false, el, x, n), el, x, n);
+          }
         }
+        for (std::size_t i = 0; i < elements.size(); ++i) sink(m, elements[i], side, inside_c[i], false, 0.0);
       }
-      for (std::size_t i = 0; i < surf.elements.size(); ++i) sink(surf.elements[i], side, inside_c[i], false, 0.0);
       // Through each group of apertures: only where one of its apertures may stand between x
       // and the surface (boxes, conservatively: a group that cannot is left out exactly).
       Box reach = surf_boxes_[s];
@@ -350,34 +369,39 @@ class Transport {
         // Both seen whole: the same region, nothing seen through the group.
         if (through_free && inside_free && !inside.empty()) continue;
         const ApertureGroup& group = groups_[g];
-        for (std::size_t i = 0; i < surf.elements.size(); ++i) {
-          const RadiosityElement& el = mesh.elements[surf.elements[i]];
-          const SphericalRegion part = element_region(through, through_free, el, x, n);
-          if (part.empty()) continue;
-          auto c = element_irradiance_coefficients(part, el, x, n);
-          // What is seen inside, by the same function as what is seen through, so that where the
-          // two regions are the same (nothing of the group in the way) the difference is 0 exactly:
-          // inside_c[i] where it came from that function, again where the shared edges gave it.
-          const std::array<double, 3> c_in =
-              !inside_free || inside.empty()
-                  ? inside_c[i]
-                  : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
-          double t = group.transmittance, spread = 0;
-          if (!group.angular.empty()) {
-            // T(μ) taken at the centroid's direction; its spread over the vertices' directions
-            // bounds (for T monotone in μ over the element, as Fresnel's is) the error of that.
-            const Vec3 cen = normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x);
-            t = group.at(dot(cen, group.pane_normal));
-            double lo = t, hi = t;
-            for (const Vec3& v : el.vertices) {
-              const double tv = group.at(dot(normalized(v - x), group.pane_normal));
-              lo = std::min(lo, tv);
-              hi = std::max(hi, tv);
+        for (std::size_t m = 0; m < N; ++m) {
+          const RadiosityMesh& mesh = *meshes[m];
+          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
+          for (std::size_t i = 0; i < elements.size(); ++i) {
+            const RadiosityElement& el = mesh.elements[elements[i]];
+            const SphericalRegion part = element_region(through, through_free, el, x, n);
+            if (part.empty()) continue;
+            auto c = element_irradiance_coefficients(part, el, x, n);
+            // What is seen inside, by the same function as what is seen through, so that where the
+            // two regions are the same (nothing of the group in the way) the difference is 0
+            // exactly: inside_c[i] where it came from that function, again where the shared edges
+            // gave it.
+            const std::array<double, 3> c_in =
+                !inside_free || inside.empty()
+                    ? inside_cs[m][i]
+                    : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
+            double t = group.transmittance, spread = 0;
+            if (!group.angular.empty()) {
+              // T(μ) taken at the centroid's direction; its spread over the vertices' directions
+              // bounds (for T monotone in μ over the element, as Fresnel's is) the error of that.
+              const Vec3 cen = normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x);
+              t = group.at(dot(cen, group.pane_normal));
+              double lo = t, hi = t;
+              for (const Vec3& v : el.vertices) {
+                const double tv = group.at(dot(normalized(v - x), group.pane_normal));
+                lo = std::min(lo, tv);
+                hi = std::max(hi, tv);
+              }
+              spread = t > 0 ? (hi - lo) / t : 0;
             }
-            spread = t > 0 ? (hi - lo) / t : 0;
+            for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
+            sink(m, elements[i], side, c, true, spread);
           }
-          for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
-          sink(surf.elements[i], side, c, true, spread);
         }
       }
     }
@@ -761,18 +785,19 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       const Sensor& s = grid->sensors[i];
       local.through.assign(nc, 0.0);
       local.inside.assign(nc, 0.0);
-      t.transport(coarse_mesh, s.position, s.normal, std::size_t(-1), local.counters,
-                  [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double) {
-                    double value = 0;
-                    for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
-                    (through ? local.through : local.inside)[e] += value;
-                  });
       const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
       double e_through = a.ground, e_inside = 0, e_spread = 0;
-      // The finer mesh is the coarser one's uniform split: element j is a child of j / 4.
-      t.transport(t.mesh(), s.position, s.normal, std::size_t(-1), local.counters,
-                  [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
+      // Both meshes from one set of visibility queries. The finer mesh is the coarser one's
+      // uniform split: its element j is a child of the coarser one's j / 4.
+      const RadiosityMesh* meshes[] = {&coarse_mesh, &t.mesh()};
+      t.transport(meshes, s.position, s.normal, std::size_t(-1), local.counters,
+                  [&](std::size_t m, std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
                     double value = 0;
+                    if (m == 0) {
+                      for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
+                      (through ? local.through : local.inside)[e] += value;
+                      return;
+                    }
                     for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
                     (through ? e_through : e_inside) += value;
                     (through ? local.through : local.inside)[e / 4] -= value;
