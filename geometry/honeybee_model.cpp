@@ -570,6 +570,23 @@ std::vector<fs::path> files_matching(const fs::path& dir, const std::string& ext
   return files;
 }
 
+// Honeybee writes a window between two rooms once per room, and its translator moves one face of
+// each pair shared by two rooms 2 × tolerance into its room, the window with it: a folder holds two
+// glass polygons of one outline facing opposite ways, that far apart. Both are marked interior,
+// so that assemble_scene takes them as one pane between rooms (without, light through them was
+// counted with T² instead of T).
+void mark_interior_copies(RadContent& content) {
+  std::vector<RadContent::Entry*> glass;
+  for (RadContent::Entry& e : content.polygons) {
+    const auto it = content.materials.find(e.polygon.material);
+    if (it != content.materials.end() && it->second.type == "glass") glass.push_back(&e);
+  }
+  for (std::size_t i = 0; i < glass.size(); ++i)
+    for (std::size_t j = i + 1; j < glass.size(); ++j)
+      if (same_outline(glass[i]->polygon, glass[j]->polygon, RadContent::kInteriorCopyGap))
+        glass[i]->interior = glass[j]->interior = true;
+}
+
 HoneybeeModel read_folder(const fs::path& given) {
   const fs::path root = fs::is_directory(given / "model") ? given / "model" : given;
   if (!fs::is_directory(root / "scene") && !fs::is_directory(root / "aperture"))
@@ -593,6 +610,7 @@ HoneybeeModel read_folder(const fs::path& given) {
                                     " taken in its first state (the default); the other states are left out");
     }
   }
+  mark_interior_copies(out.content);
   const fs::path grid_dir = root / "grid";
   std::vector<fs::path> grids;
   if (const fs::path info = grid_dir / "_info.json"; fs::exists(info)) {

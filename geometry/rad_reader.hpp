@@ -38,6 +38,11 @@ struct RadContent {
     // here lets no sky in directly. A .rad file cannot tell, so its polygons leave it false.
     bool interior = false;
   };
+  // How far apart (a fraction of its extent) the two copies of an interior window may lie to be
+  // one pane (same_outline): Honeybee's 2 × tolerance is 0.02 m at its default tolerance of
+  // 0.01 m, 1.4 % of a 1 m square window's extent; 5 % leaves room for smaller windows and coarser
+  // tolerances and stays far below the depth of a room.
+  static constexpr double kInteriorCopyGap = 0.05;
   std::vector<Entry> polygons;
   std::vector<std::string> notices;
   // Names of skipped sky patterns and sources: materials may still name them as modifiers.

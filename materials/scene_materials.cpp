@@ -41,20 +41,6 @@ struct Tally {
   }
 };
 
-// Whether two polygons are the same pane: as many vertices, each of one within 1e-6 of the
-// extent of a vertex of the other (the two rooms' copies of an interior window run in opposite
-// orders).
-bool same_pane(const Polygon& a, const Polygon& b) {
-  if (a.vertices.size() != b.vertices.size()) return false;
-  double extent = 0;
-  for (const Vec3& u : a.vertices)
-    for (const Vec3& v : a.vertices) extent = std::max(extent, norm(u - v));
-  const double tolerance = 1e-6 * extent;
-  return std::all_of(a.vertices.begin(), a.vertices.end(), [&](const Vec3& u) {
-    return std::any_of(b.vertices.begin(), b.vertices.end(), [&](const Vec3& v) { return norm(u - v) <= tolerance; });
-  });
-}
-
 }  // namespace
 
 Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
@@ -79,9 +65,9 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
     if (type == "light" || type == "glow" || type == "illum") {
       sources.add(poly);
     } else if (type == "glass" && entry.interior && std::any_of(interior_panes.begin(), interior_panes.end(), [&](const Polygon* q) {
-                 return same_pane(*q, poly);
+                 return same_outline(*q, poly, RadContent::kInteriorCopyGap);
                })) {
-      // The adjacent room's copy of an interior window (an HBJSON lists it once per room): one pane.
+      // The adjacent room's copy of an interior window (Honeybee writes it once per room): one pane.
       interior_copies.add(poly);
     } else if (type == "glass") {
       if (entry.interior) {
@@ -172,7 +158,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
   if (interior_copies.count)
     scene.notices.push_back(interior_copies.notice(
         "glass polygon", "left out as the adjacent room's copy of an interior window already read (the same "
-                         "vertices within 1e-6 of its extent): one pane"));
+                         "outline within 1e-6 of its extent, facing the other way up to 5 % of it apart, as "
+                         "Honeybee's Radiance folders move it): one pane"));
   return scene;
 }
 

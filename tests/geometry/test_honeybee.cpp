@@ -173,6 +173,36 @@ TEST_CASE("HBJSON: a window between two rooms is one interior pane, doors betwee
   CHECK(copy);
 }
 
+TEST_CASE("Honeybee Radiance folder: an interior window's two copies, 2 x tolerance apart facing opposite ways, are one pane") {
+  const std::filesystem::path root = std::filesystem::temp_directory_path() / "daylit_test_hb_interior";
+  std::filesystem::remove_all(root);
+  const auto write = [&](const std::string& relative, const std::string& text) {
+    std::filesystem::create_directories((root / relative).parent_path());
+    std::ofstream(root / relative) << text;
+  };
+  write("model/scene/m.mat", "void glass clear 0 0 3 .96 .96 .96\n");
+  // Room A's copy at y = 3 facing +y; room B's moved 2 x 0.01 into room B, facing -y (as
+  // Honeybee's translator writes them); a pane of another window facing the same way 0.02 behind
+  // its twin (double glazing drawn as two panes), and one facing the other way 0.5 away (beyond 5 %
+  // of its 1.41 m extent): both stay two panes.
+  write("model/scene/m.rad",
+        "clear polygon a_window 0 0 12 1 3 1  1 3 2  2 3 2  2 3 1\n"
+        "clear polygon b_window 0 0 12 1 3.02 1  2 3.02 1  2 3.02 2  1 3.02 2\n"
+        "clear polygon outer 0 0 12 5 3 1  5 3 2  6 3 2  6 3 1\n"
+        "clear polygon inner 0 0 12 5 3.02 1  5 3.02 2  6 3.02 2  6 3.02 1\n"
+        "clear polygon far_a 0 0 12 8 3 1  8 3 2  9 3 2  9 3 1\n"
+        "clear polygon far_b 0 0 12 8 3.5 1  9 3.5 1  9 3.5 2  8 3.5 2\n");
+  const HoneybeeModel model = read_honeybee_model(root.string());
+  const Scene scene = assemble_scene(model.content);
+  REQUIRE(scene.apertures.size() == 5);  // b_window left out
+  CHECK(scene.interior_apertures == 1);  // a_window
+  CHECK(scene.apertures[0].polygon.name == "a_window");
+  bool copy = false;
+  for (const auto& n : scene.notices) copy |= n.find("'b_window' first) left out as the adjacent room's copy") != std::string::npos;
+  CHECK(copy);
+  std::filesystem::remove_all(root);
+}
+
 TEST_CASE("HBJSON: sensor grids come from properties.radiance, named and ordered as the model's") {
   const HoneybeeModel model = read_honeybee_model(kData + "model_radiance_grid_views.hbjson");
   REQUIRE(model.grids.size() == 2);
