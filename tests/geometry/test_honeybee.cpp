@@ -36,6 +36,12 @@ const Polygon* find(const std::vector<Polygon>& polygons, const std::string& nam
 
 double area(const std::vector<Vec3>& v) { return 0.5 * norm(newell_normal(v)); }
 
+// A file of a synthetic Radiance folder, its folders made.
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
 // The smallest valid HBJSON room around one face, for bad-input cases.
 std::string model_with_face(const std::string& face, const std::string& radiance = "{}") {
   return R"({"type": "Model", "identifier": "m", "properties": {"type": "ModelProperties", "radiance": )" + radiance +
@@ -176,10 +182,7 @@ TEST_CASE("HBJSON: a window between two rooms is one interior pane, doors betwee
 TEST_CASE("Honeybee Radiance folder: an interior window's two copies, 2 x tolerance apart facing opposite ways, are one pane") {
   const std::filesystem::path root = std::filesystem::temp_directory_path() / "daylit_test_hb_interior";
   std::filesystem::remove_all(root);
-  const auto write = [&](const std::string& relative, const std::string& text) {
-    std::filesystem::create_directories((root / relative).parent_path());
-    std::ofstream(root / relative) << text;
-  };
+  const auto write = [&](const std::string& relative, const std::string& text) { write_file(root / relative, text); };
   write("model/scene/m.mat", "void glass clear 0 0 3 .96 .96 .96\n");
   // Room A's copy at y = 3 facing +y; room B's moved 2 x 0.01 into room B, facing -y (as
   // Honeybee's translator writes them); a pane of another window facing the same way 0.02 behind
@@ -283,10 +286,7 @@ TEST_CASE("HBJSON: bad input names the file and the JSON path") {
 TEST_CASE("Honeybee Radiance folder: .mat before .rad, .blk not read, grids in _info.json's order") {
   const std::filesystem::path root = std::filesystem::temp_directory_path() / "daylit_test_hb_folder";
   std::filesystem::remove_all(root);
-  const auto write = [&](const std::string& relative, const std::string& text) {
-    std::filesystem::create_directories((root / relative).parent_path());
-    std::ofstream(root / relative) << text;
-  };
+  const auto write = [&](const std::string& relative, const std::string& text) { write_file(root / relative, text); };
   write("model/scene/envelope.mat", "void plastic wall 0 0 5 .5 .5 .5 0 0\n");
   write("model/scene/envelope.rad", "wall polygon floor 0 0 12 0 0 0 0 4 0 4 4 0 4 0 0\n");
   write("model/scene/envelope.blk", "this is not read: it would be an error\n");
