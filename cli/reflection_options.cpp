@@ -195,6 +195,9 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
                                      "solved are those of the whole system)"},
       {"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"}};
   j["run_time_s"] = run_time_s;
+  nlohmann::json stages = nlohmann::json::array();
+  for (const auto& stage : r.stages) stages.push_back({{"stage", stage.stage}, {"wall_s", stage.wall_s}});
+  j["stages"] = stages;
   return j;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -714,10 +715,22 @@ struct MeshSolution {
   ReciprocityReport reciprocity;
 };
 
-MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress) {
+// Wall seconds since `start`, restarting it.
+double lap(std::chrono::steady_clock::time_point& start) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - start).count();
+  start = now;
+  return s;
+}
+
+// `name`: the mesh's, for the stages' times ("coarse mesh", "round 0").
+MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress,
+                        const std::string& name) {
+  auto clock = std::chrono::steady_clock::now();
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
   std::vector<ReceiverRow> rows = node_rows(t, result, progress);
+  result.stages.push_back({name + ": rows (first bounce and transport at every node)", lap(clock)});
   std::vector<double> rho(nu), source(nu), weight(nu, 0.0);
   std::vector<TransportRow> k_rows(nu);
   for (std::size_t u = 0; u < nu; ++u) {
@@ -729,8 +742,12 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     if (t.live(el.surface, int(u / 3 % 2))) weight[u] = el.area / 3;
   }
   MeshSolution out;
-  if (reciprocal) out.reciprocity = make_reciprocal(k_rows, weight);
+  if (reciprocal) {
+    out.reciprocity = make_reciprocal(k_rows, weight);
+    result.stages.push_back({name + ": reciprocity", lap(clock)});
+  }
   RadiositySolution sol = solve_radiosity(k_rows, rho, source);
+  result.stages.push_back({name + ": solve", lap(clock)});
   if (!sol.converged)
     throw Error("the radiosity solution did not converge (" + std::to_string(sol.sweeps) +
                 " sweeps): the model's surfaces may overlap (coincident polygons facing the same way count twice)");
@@ -870,14 +887,17 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
 
   // The coarse mesh at twice the asked element size; each round solves its uniform split too and
   // reports the finer solution, with the difference of the two as the error estimate.
+  auto clock = std::chrono::steady_clock::now();
   Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
+  result.stages.push_back({"mesh and visibility engines", lap(clock)});
   const double to_percent = 100 / t.e_out();
   result.sides_solved = t.live_side_count();
   result.sides_left_out = 2 * t.surface_count() - result.sides_solved;
   const auto rows_stage = [&](const std::string& name) {
     return stage_progress(opt, name, "element sides", 2 * t.mesh().elements.size());
   };
-  MeshSolution coarse = solve_mesh(t, opt.reciprocal_transport, result, rows_stage("radiosity: the coarse mesh's rows"));
+  MeshSolution coarse =
+      solve_mesh(t, opt.reciprocal_transport, result, rows_stage("radiosity: the coarse mesh's rows"), "coarse mesh");
   for (int round = 0;; ++round) {
     const RadiosityMesh coarse_mesh = t.mesh();
     t.split_all();
@@ -891,11 +911,14 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       name += "'s";
     }
     name += " rows";
-    MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name));
+    const std::string round_name = "round " + std::to_string(round);
+    MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name);
+    clock = std::chrono::steady_clock::now();
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
     const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result,
                                               stage_progress(opt, "reflections at the sensors", "sensors", sensors));
+    result.stages.push_back({round_name + ": sensors (both meshes' transport and the estimate)", lap(clock)});
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
       SensorReflections& out = result.grids[g];

@@ -111,6 +111,13 @@ struct ReflectionResult {
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0, balance_mismatch = 0;
   ReciprocityReport reciprocity;       // of the reported mesh's transport (zeros where not made reciprocal)
   std::vector<double> error_by_round;  // max sensor estimate after each round
+  // Where the run's wall time went, stage by stage in order ("mesh and visibility engines",
+  // "coarse mesh: rows", …, "round 0: sensors"), for the summary.
+  struct StageTime {
+    std::string stage;
+    double wall_s = 0;
+  };
+  std::vector<StageTime> stages;
   double element_size = 0;             // as used (the asked one, or the automatic one)
   VisibilityCounters counters;
 };

@@ -45,6 +45,11 @@ assert c["energy_balance"]["transport"]["reciprocal"] is True, c["energy_balance
 assert abs(c["energy_balance"]["relative_mismatch"]) < 1e-9, c["energy_balance"]
 assert c["energy_balance"]["transport"]["closure_residual"] < 1e-13, c["energy_balance"]["transport"]
 assert c["error"]["max_estimate_percent"] > 0
+# Where the time went, stage by stage: the rows, the solves and the sensors of each mesh, within
+# the run's time.
+stages = [x["stage"] for x in c["stages"]]
+assert any("rows" in x for x in stages) and any("sensors" in x for x in stages), stages
+assert all(x["wall_s"] >= 0 for x in c["stages"]) and sum(x["wall_s"] for x in c["stages"]) <= c["run_time_s"], c["stages"]
 g = s["grids"][0]
 for k in ("sc_percent", "erc_percent", "irc_percent", "reflection_error_estimate_percent"):
     assert k in g["components"], g["components"].keys()
