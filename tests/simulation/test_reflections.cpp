@@ -277,6 +277,18 @@ void check_closed_enclosure(const Scene& scene, double element_size, const std::
   }
 }
 
+// How many nodes of a scene's mesh at `element_size` lie behind their own face (a rounding).
+std::size_t nodes_behind_their_faces(const Scene& scene, double element_size) {
+  const RadiosityMesh mesh = mesh_surfaces(scene.occluders, std::vector<double>(scene.occluders.size(), 0.7),
+                                           [&](const RadiosityElement&) { return element_size; });
+  std::size_t behind = 0;
+  for (const RadiosityElement& el : mesh.elements) {
+    const Vec3& corner = scene.occluders[mesh.surfaces[el.surface].occluder].vertices.front();
+    for (const Vec3& node : el.nodes) behind += dot(el.normal, node - corner) < 0;
+  }
+  return behind;
+}
+
 }  // namespace
 
 TEST_CASE("closed enclosures: rows sum to 1, exchanges are reciprocal, uniform emission gives M0/(1 - rho)") {
@@ -291,19 +303,29 @@ TEST_CASE("closed enclosures: rows sum to 1, exchanges are reciprocal, uniform e
     // face, which must not hide the room from it (VisibilityOptions::receiver_occluder).
     const Vec3 lo{0.8, 0.3, 0.9};
     const Scene scene = box_scene(2.4, 5.7, 2.1, false, lo);
-    const VisibilityEngine engine(scene, GeometryMode::exact);
-    ReflectionOptions o;
-    o.element_size = 1.6;
-    const RadiositySystem sys = radiosity_system(scene, std::vector<double>(6, 0.7), engine, {}, o);
-    std::size_t behind = 0;
-    for (std::size_t u = 0; u < sys.rows.size(); u += 6) {
-      const RadiosityElement& el = sys.mesh.elements[u / 6];
-      const Vec3& corner = scene.occluders[sys.mesh.surfaces[el.surface].occluder].vertices.front();
-      for (int k = 0; k < 3; ++k) behind += dot(el.normal, el.nodes[std::size_t(k)] - corner) < 0;
-    }
-    REQUIRE(behind > 0);  // the case is there to be checked
+    REQUIRE(nodes_behind_their_faces(scene, 1.6) > 0);  // the case is there to be checked
     check_closed_enclosure(scene, 1.6, [&](const Vec3& p) {
       return p.x > lo.x && p.x < lo.x + 2.4 && p.y > lo.y && p.y < lo.y + 5.7 && p.z > lo.z && p.z < lo.z + 2.1;
+    });
+  }
+  SECTION("a box turned about two axes: every face's nodes a rounding off it, on either side") {
+    // Rotations by 30 degrees about z, then 10 degrees about x: no face is axis-aligned.
+    const double cz = std::cos(kPi / 6), sz = std::sin(kPi / 6), cx = std::cos(kPi / 18), sx = std::sin(kPi / 18);
+    const auto turn = [&](const Vec3& p) {
+      const Vec3 q{cz * p.x - sz * p.y, sz * p.x + cz * p.y, p.z};
+      return Vec3{q.x, cx * q.y - sx * q.z, sx * q.y + cx * q.z};
+    };
+    const auto unturn = [&](const Vec3& p) {
+      const Vec3 q{p.x, cx * p.y + sx * p.z, -sx * p.y + cx * p.z};
+      return Vec3{cz * q.x + sz * q.y, -sz * q.x + cz * q.y, q.z};
+    };
+    Scene scene = box_scene(2, 2.5, 1.5, false, {0.3, 0.7, 0.1});
+    for (Polygon& face : scene.occluders)
+      for (Vec3& v : face.vertices) v = turn(v);
+    REQUIRE(nodes_behind_their_faces(scene, 1.6) > 0);
+    check_closed_enclosure(scene, 1.6, [&](const Vec3& p) {
+      const Vec3 q = unturn(p);
+      return q.x > 0.3 && q.x < 2.3 && q.y > 0.7 && q.y < 3.2 && q.z > 0.1 && q.z < 1.6;
     });
   }
   SECTION("an L-shaped room (surfaces hide each other)") {
