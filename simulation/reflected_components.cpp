@@ -174,7 +174,7 @@ class Transport {
     if (!with_sky && ground_luminance_ == 0) return out;
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
-    full.excluded_occluder = half.excluded_occluder = own;
+    full.receiver_occluder = half.receiver_occluder = own;
     // What is seen through aperture `ap` in `all`, of which `above` is above the horizon.
     const auto add = [&](const Aperture& ap, const SphericalRegion& all, const SphericalRegion& above, double sign = 1) {
       const ThroughApertures before = out;
@@ -222,7 +222,7 @@ class Transport {
     empty = true;
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
-    full.excluded_occluder = half.excluded_occluder = own;  // the box's occluders start with the scene's
+    full.receiver_occluder = half.receiver_occluder = own;  // the box's occluders start with the scene's
     for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
       // The region above the horizon is part of the whole one: where that is empty (every
       // receiver inside a closed room), the second query is left out, exactly.
@@ -244,7 +244,7 @@ class Transport {
     std::vector<LightView> out;
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
-    full.excluded_occluder = half.excluded_occluder = own;
+    full.receiver_occluder = half.receiver_occluder = own;
     // One view: `all` seen through `ap` (nullptr: directly), `above` of it above the horizon;
     // `through`, where panes lie in front of the aperture, their combined transmittance.
     const auto add_view = [&](SphericalRegion all, SphericalRegion above, const Aperture* ap, std::int32_t index,
