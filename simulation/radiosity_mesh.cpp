@@ -127,15 +127,17 @@ RadiosityMesh mesh_surfaces(const std::vector<Polygon>& polygons, const std::vec
   return mesh;
 }
 
-void refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split) {
+std::vector<std::size_t> refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split) {
   std::vector<RadiosityElement> old = std::move(mesh.elements);
   mesh.elements.clear();
   for (auto& s : mesh.surfaces) s.elements.clear();
+  std::vector<std::size_t> parent;
   for (std::size_t i = 0; i < old.size(); ++i) {
     auto add = [&](const RadiosityElement& e) {
       mesh.surfaces[e.surface].elements.push_back(mesh.elements.size());
       mesh.max_level = std::max(mesh.max_level, e.level);
       mesh.elements.push_back(e);
+      parent.push_back(i);
     };
     if (i < split.size() && split[i])
       for (const auto& c : split_element(old[i])) add(c);
@@ -143,6 +145,7 @@ void refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split) {
       add(old[i]);
   }
   index_edges(mesh);
+  return parent;
 }
 
 }  // namespace daylit

@@ -88,7 +88,9 @@ RadiosityMesh mesh_surfaces(const std::vector<Polygon>& polygons, const std::vec
                             const std::function<double(const RadiosityElement&)>& max_edge);
 
 // Replaces the elements flagged in `split` by their four children (surfaces' lists and the
-// edges updated).
-void refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split);
+// edges updated). Returns, per element of the refined mesh, the index of the element of the
+// mesh before that it is or came from (its parent: children of one element are consecutive,
+// elements keep their order).
+std::vector<std::size_t> refine_mesh(RadiosityMesh& mesh, const std::vector<bool>& split);
 
 }  // namespace daylit

@@ -298,20 +298,24 @@ class Transport {
   // the same surfaces.
   template <class Sink>
   void transport(const RadiosityMesh& mesh, const Vec3& x, const Vec3& n, std::size_t own_surface,
-                 VisibilityCounters& counters, Sink&& sink) const {
+                 VisibilityCounters& counters, Sink&& sink, const std::vector<bool>* only = nullptr) const {
     const RadiosityMesh* meshes[] = {&mesh};
-    transport(meshes, x, n, own_surface, counters,
-              [&](std::size_t, std::size_t e, int side, const std::array<double, 3>& c, bool through, double spread) {
-                sink(e, side, c, through, spread);
-              });
+    transport(
+        meshes, x, n, own_surface, counters,
+        [&](std::size_t, std::size_t e, int side, const std::array<double, 3>& c, bool through, double spread) {
+          sink(e, side, c, through, spread);
+        },
+        only);
   }
 
   // The same for several meshes of the same surfaces at once (a coarse mesh and its split, for the
   // error estimate): sink(m, element, side, c, through, spread) for meshes[m]. What is visible of a
   // surface does not depend on how it is meshed, so each surface's regions are found once.
+  // `only`, where given: the surfaces s with (*only)[s] alone (a row brought up to date after
+  // some surfaces were refined).
   template <std::size_t N, class Sink>
   void transport(const RadiosityMesh* const (&meshes)[N], const Vec3& x, const Vec3& n, std::size_t own_surface,
-                 VisibilityCounters& counters, Sink&& sink) const {
+                 VisibilityCounters& counters, Sink&& sink, const std::vector<bool>* only = nullptr) const {
     // The surface is a luminaire: nothing beyond its plane hides it, and it does not hide itself.
     // Nor does the receiver's own polygon, in whose plane it lies: a node is a rounding off it,
     // and one behind it would otherwise see nothing but its own polygon (VisibilityOptions).
@@ -321,7 +325,7 @@ class Transport {
     const std::vector<RadiositySurface>& surfaces = meshes[0]->surfaces;
     if (own_surface < surfaces.size()) opt.receiver_occluder = surfaces[own_surface].occluder;
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
-      if (s == own_surface) continue;
+      if (s == own_surface || (only != nullptr && !(*only)[s])) continue;
       const RadiositySurface& surf = surfaces[s];
       const double facing = dot(surf.normal, x - surf.point);
       // In the surface's plane, up to roundoff (coplanar surfaces): nothing passes between them.
@@ -408,11 +412,13 @@ class Transport {
     }
   }
 
-  // Every element split in four at its edges' midpoints.
-  void split_all() {
-    refine_mesh(mesh_, std::vector<bool>(mesh_.elements.size(), true));
+  // The elements flagged split in four at their edges' midpoints; returns refine_mesh's parents.
+  std::vector<std::size_t> refine(const std::vector<bool>& split) {
+    std::vector<std::size_t> parent = refine_mesh(mesh_, split);
     remesh_boxes();
+    return parent;
   }
+  std::vector<std::size_t> split_all() { return refine(std::vector<bool>(mesh_.elements.size(), true)); }
 
   void remesh_boxes() {
     surf_boxes_.clear();
@@ -619,19 +625,64 @@ ProgressCallback stage_progress(const ReflectionOptions& options, const std::str
   return [&options, stage, unit, total](std::size_t done) { options.on_progress(stage, unit, done, total); };
 }
 
-// Rows of K and first bounce at every node, in parallel over element sides.
-std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result, const ProgressCallback& progress = {}) {
+// What a mesh's rows can take from those of the mesh it was refined from (Transport::refine): an
+// element not split keeps its nodes, so its first bounce, and its row's entries for every source
+// element not split (a coefficient of K depends on the node and the source element alone); only
+// the entries of the new elements (the split ones' children) are found, over the surfaces that
+// have them.
+struct EarlierRows {
+  std::vector<ReceiverRow> rows;      // the earlier mesh's, as collocated (before reciprocity)
+  std::vector<std::size_t> parent;    // per element of the current mesh: the earlier one (refine_mesh)
+  std::vector<bool> split;            // per earlier element
+  std::vector<bool> refined_surface;  // per surface: some of its elements split
+};
+
+// Rows of K and first bounce at every node, in parallel over element sides; with `earlier`, what
+// the rows of the mesh before can give is taken from them.
+std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result, const ProgressCallback& progress = {},
+                                   const EarlierRows* earlier = nullptr) {
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t ne = mesh.elements.size();
   std::vector<ReceiverRow> rows(t.unknowns());
+  // The current index of every earlier element that was not split.
+  std::vector<std::size_t> current;
+  // The mesh with only its new elements listed on each surface: what a kept row lacks.
+  RadiosityMesh fresh;
+  if (earlier != nullptr) {
+    current.assign(earlier->split.size(), std::size_t(-1));
+    for (std::size_t e = 0; e < ne; ++e)
+      if (!earlier->split[earlier->parent[e]]) current[earlier->parent[e]] = e;
+    fresh = mesh;
+    for (RadiositySurface& surface : fresh.surfaces)
+      std::erase_if(surface.elements, [&](std::size_t e) { return !earlier->split[earlier->parent[e]]; });
+  }
   const auto locals = for_each_sensor<Local>(2 * ne, 8, progress, [&](std::size_t i, Local& local) {
     const std::size_t e = i / 2;
     const int side = int(i % 2);
     const RadiosityElement& el = mesh.elements[e];
     if (!t.live(el.surface, side)) return;
     const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
+    const bool kept = earlier != nullptr && !earlier->split[earlier->parent[e]];
     for (int k = 0; k < 3; ++k) {
-      ReceiverRow r = receiver_row(t, el.nodes[k], n, el.surface, local.counters);
+      ReceiverRow r;
+      if (kept) {
+        const ReceiverRow& before = earlier->rows[unknown(earlier->parent[e], side, k)];
+        r.first_bounce = before.first_bounce;
+        r.direct_empty = before.direct_empty;
+        for (const auto& [j, c] : before.row) {
+          const std::size_t source = current[j / 6];
+          if (source != std::size_t(-1)) r.row.emplace_back(std::uint32_t(unknown(source, int(j / 3 % 2), int(j % 3))), c);
+        }
+        t.transport(
+            fresh, el.nodes[k], n, el.surface, local.counters,
+            [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
+              for (int m = 0; m < 3; ++m)
+                if (c[m] != 0) r.row.emplace_back(std::uint32_t(unknown(src, src_side, m)), c[m]);
+            },
+            &earlier->refined_surface);
+      } else {
+        r = receiver_row(t, el.nodes[k], n, el.surface, local.counters);
+      }
       local.direct_empty += r.direct_empty;
       ++local.direct;
       rows[unknown(e, side, k)] = std::move(r);
@@ -723,13 +774,15 @@ double lap(std::chrono::steady_clock::time_point& start) {
   return s;
 }
 
-// `name`: the mesh's, for the stages' times ("coarse mesh", "round 0").
+// `name`: the mesh's, for the stages' times ("coarse mesh", "round 0"). `earlier`: node_rows'.
+// `keep`, where given: the rows as collocated, for the next refinement's node_rows.
 MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress,
-                        const std::string& name) {
+                        const std::string& name, const EarlierRows* earlier = nullptr,
+                        std::vector<ReceiverRow>* keep = nullptr) {
   auto clock = std::chrono::steady_clock::now();
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
-  std::vector<ReceiverRow> rows = node_rows(t, result, progress);
+  std::vector<ReceiverRow> rows = node_rows(t, result, progress, earlier);
   result.stages.push_back({name + ": rows (first bounce and transport at every node)", lap(clock)});
   std::vector<double> rho(nu), source(nu), weight(nu, 0.0);
   std::vector<TransportRow> k_rows(nu);
@@ -738,7 +791,7 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     const double r = mesh.surfaces[el.surface].reflectance;
     rho[u] = r;
     source[u] = r * rows[u].first_bounce;
-    k_rows[u] = std::move(rows[u].row);
+    k_rows[u] = keep != nullptr ? rows[u].row : std::move(rows[u].row);
     if (t.live(el.surface, int(u / 3 % 2))) weight[u] = el.area / 3;
   }
   MeshSolution out;
@@ -767,18 +820,29 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     out.flux_absorbed += w * (1 - rho[u]) * (rows[u].first_bounce + received);
     out.flux_escaping += w * m[u] * (1 - f);
   }
+  if (keep != nullptr) *keep = std::move(rows);
   return out;
 }
 
 // ERC and IRC at every sensor from the finer of two solutions, and the estimate of their error:
-// per element P of the coarser mesh, what P gives the sensor against what its four children give
-// (through apertures and inside each), the absolute differences summed over P. That is at least
-// the difference of the two sensor values, and a sensor where the two meshes agree by chance
-// (the difference changing sign across the room) keeps the estimate of its elements. Through
-// glass, each element's spread of T(μ) over its directions times what it gives is added (the
-// transmittance taken at the centroid's direction costs at most that).
+// per element P of the coarser mesh that was split, what P gives the sensor against what its four
+// children give (through apertures and inside each), the absolute differences summed over P.
+// That is at least the difference of the two sensor values, and a sensor where the two meshes
+// agree by chance (the difference changing sign across the room) keeps the estimate of its
+// elements. Through glass, each element's spread of T(μ) over its directions times what it gives
+// is added (the transmittance taken at the centroid's direction costs at most that). Elements
+// not split this round add what earlier rounds estimated for them (`carried`, per sensor).
+struct SensorTerms {
+  // The split elements' terms |P − its children|, (P, term), largest first, at most kTermsKept:
+  // the candidates for the next local refinement. `total`: all of them summed.
+  std::vector<std::pair<std::uint32_t, double>> largest;
+  double total = 0, spread = 0;
+};
+constexpr std::size_t kTermsKept = 256;
+
 struct SensorValues {
   std::vector<std::vector<double>> erc, irc, estimate;  // per grid, per sensor
+  std::vector<std::vector<SensorTerms>> terms;          // per grid, per sensor
 };
 
 struct SensorLocal {
@@ -786,15 +850,21 @@ struct SensorLocal {
   std::vector<double> through, inside;  // per coarse element: coarse minus fine
 };
 
+// `parent`: per element of the finer mesh (t's), the coarser element it is or came from; `split`:
+// per coarser element, whether it was split; `carried`: per grid and sensor (empty: none).
 SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh, const std::vector<double>& coarse,
-                           const std::vector<double>& fine, const std::vector<const SensorGrid*>& grids,
-                           ReflectionResult& result, const ProgressCallback& progress) {
+                           const std::vector<double>& fine, const std::vector<std::size_t>& parent,
+                           const std::vector<bool>& split, const std::vector<std::vector<double>>& carried,
+                           const std::vector<const SensorGrid*>& grids, ReflectionResult& result,
+                           const ProgressCallback& progress) {
   SensorValues out;
   const std::size_t nc = coarse_mesh.elements.size();
   std::size_t before = 0;  // sensors of the earlier grids: progress counts over all of them
-  for (const SensorGrid* grid : grids) {
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const SensorGrid* grid = grids[g];
     const std::size_t n = grid->sensors.size();
     std::vector<double> erc(n, 0.0), irc(n, 0.0), estimate(n, 0.0);
+    std::vector<SensorTerms> terms(n);
     ProgressCallback grid_progress;
     if (progress) grid_progress = [&progress, before](std::size_t done) { progress(before + done); };
     before += n;
@@ -804,25 +874,36 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       local.inside.assign(nc, 0.0);
       const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
       double e_through = a.ground, e_inside = 0, e_spread = 0;
-      // Both meshes from one set of visibility queries. The finer mesh is the coarser one's
-      // uniform split: its element j is a child of the coarser one's j / 4.
+      // Both meshes from one set of visibility queries.
       const RadiosityMesh* meshes[] = {&coarse_mesh, &t.mesh()};
       t.transport(meshes, s.position, s.normal, std::size_t(-1), local.counters,
                   [&](std::size_t m, std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
                     double value = 0;
                     if (m == 0) {
+                      if (!split[e]) return;
                       for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
                       (through ? local.through : local.inside)[e] += value;
                       return;
                     }
                     for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
                     (through ? e_through : e_inside) += value;
-                    (through ? local.through : local.inside)[e / 4] -= value;
+                    if (split[parent[e]]) (through ? local.through : local.inside)[parent[e]] -= value;
                     e_spread += sp * std::abs(value);
                   });
-      double difference = 0;
-      for (std::size_t p = 0; p < nc; ++p) difference += std::abs(local.through[p]) + std::abs(local.inside[p]);
-      estimate[i] = difference + e_spread;
+      SensorTerms& mine = terms[i];
+      std::vector<std::pair<std::uint32_t, double>>& largest = mine.largest;
+      for (std::size_t p = 0; p < nc; ++p) {
+        const double term = std::abs(local.through[p]) + std::abs(local.inside[p]);
+        if (term == 0) continue;
+        mine.total += term;
+        largest.emplace_back(std::uint32_t(p), term);
+      }
+      const auto larger = [](const auto& x, const auto& y) { return x.second > y.second || (x.second == y.second && x.first < y.first); };
+      const std::size_t kept = std::min(largest.size(), kTermsKept);
+      std::partial_sort(largest.begin(), largest.begin() + std::ptrdiff_t(kept), largest.end(), larger);
+      largest.resize(kept);
+      mine.spread = e_spread;
+      estimate[i] = mine.total + e_spread + (carried.empty() ? 0.0 : carried[g][i]);
       // Light is not negative: a component below 0 by less than its own estimate (the rounding of
       // what is seen through an aperture less the same seen inside: −2.7e-19 on the office's
       // sensors that see no exterior surface) is 0, which is nearer the truth; a larger negative
@@ -835,8 +916,49 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
     out.erc.push_back(std::move(erc));
     out.irc.push_back(std::move(irc));
     out.estimate.push_back(std::move(estimate));
+    out.terms.push_back(std::move(terms));
   }
   return out;
+}
+
+// The next local refinement (DESIGN.md §4): every sensor whose estimate exceeds `tolerance` flags
+// its largest terms, largest first, until what is left of them (R), with its carried estimate, its
+// glass spread and a quarter of the flagged ones (F/4: what their split leaves at second order,
+// the order the window room's estimate falls at, test_reflections), meets the tolerance; the
+// flags of all sensors together are split. Each sensor then carries, besides what it
+// carried, the terms of the elements not split, as they were: an element's estimate stays until
+// it is refined. A term of an element split for another sensor but not among a sensor's kept
+// candidates is carried too, so the carried part may count it twice, never too little. Returns
+// the flags per element of the finer mesh (children of a flagged coarser element).
+std::vector<bool> local_refinement(const SensorValues& values, double tolerance, const std::vector<std::size_t>& parent,
+                                   std::size_t coarse_elements, std::vector<std::vector<double>>& carried) {
+  std::vector<bool> flag(coarse_elements, false);
+  if (carried.empty())
+    for (const auto& e : values.estimate) carried.emplace_back(e.size(), 0.0);
+  for (std::size_t g = 0; g < values.terms.size(); ++g)
+    for (std::size_t i = 0; i < values.terms[g].size(); ++i) {
+      if (!(values.estimate[g][i] > tolerance)) continue;
+      const SensorTerms& terms = values.terms[g][i];
+      const double target = tolerance - carried[g][i] - terms.spread;
+      double rest = terms.total, flagged = 0;
+      for (const auto& [p, term] : terms.largest) {
+        if (rest + flagged / 4 <= target) break;
+        flag[p] = true;
+        rest -= term;
+        flagged += term;
+      }
+    }
+  for (std::size_t g = 0; g < values.terms.size(); ++g)
+    for (std::size_t i = 0; i < values.terms[g].size(); ++i) {
+      const SensorTerms& terms = values.terms[g][i];
+      double rest = terms.total;
+      for (const auto& [p, term] : terms.largest)
+        if (flag[p]) rest -= term;
+      carried[g][i] += std::max(rest, 0.0);  // rounding of the subtractions: not below 0
+    }
+  std::vector<bool> split(parent.size());
+  for (std::size_t j = 0; j < parent.size(); ++j) split[j] = flag[parent[j]];
+  return split;
 }
 
 }  // namespace
@@ -898,9 +1020,14 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   };
   MeshSolution coarse =
       solve_mesh(t, opt.reciprocal_transport, result, rows_stage("radiosity: the coarse mesh's rows"), "coarse mesh");
+  // Round 0 splits every element of the coarse mesh; each further round splits only what
+  // local_refinement flags, and takes the rest of its rows from the round before (EarlierRows).
+  RadiosityMesh coarse_mesh = t.mesh();
+  std::vector<bool> split(coarse_mesh.elements.size(), true);
+  std::vector<std::size_t> parent = t.split_all();
+  std::vector<std::vector<double>> carried;  // per grid and sensor: the estimate of elements not split since
+  std::unique_ptr<EarlierRows> earlier;
   for (int round = 0;; ++round) {
-    const RadiosityMesh coarse_mesh = t.mesh();
-    t.split_all();
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a chain of + here.
     std::string name = "radiosity: ";
     if (round == 0) {
@@ -912,12 +1039,22 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     }
     name += " rows";
     const std::string round_name = "round " + std::to_string(round);
-    MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name);
+    const bool more = round < opt.max_refinements;
+    std::vector<ReceiverRow> kept_rows;
+    MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name, earlier.get(),
+                                   more ? &kept_rows : nullptr);
+    earlier.reset();
     clock = std::chrono::steady_clock::now();
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
-    const SensorValues values = sensor_values(t, coarse_mesh, coarse.exitance, fine.exitance, grids, result,
-                                              stage_progress(opt, "reflections at the sensors", "sensors", sensors));
+    // The coarser mesh as the sensors need it: only its split elements give terms, so each
+    // surface lists those alone (a surface none of whose elements was split, none).
+    RadiosityMesh split_part = coarse_mesh;
+    for (RadiositySurface& surface : split_part.surfaces)
+      std::erase_if(surface.elements, [&](std::size_t e) { return !split[e]; });
+    const SensorValues values =
+        sensor_values(t, split_part, coarse.exitance, fine.exitance, parent, split, carried, grids, result,
+                      stage_progress(opt, "reflections at the sensors", "sensors", sensors));
     result.stages.push_back({round_name + ": sensors (both meshes' transport and the estimate)", lap(clock)});
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
@@ -943,8 +1080,21 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     result.reciprocity = fine.reciprocity;
     const double first = fine.flux_first_bounce;
     result.balance_mismatch = first > 0 ? (first - fine.flux_absorbed - fine.flux_escaping) / first : 0;
-    if (worst <= opt.tolerance_percent || round >= opt.max_refinements || result.elements == 0) break;
+    if (worst <= opt.tolerance_percent || !more || result.elements == 0) break;
+    std::vector<bool> next = local_refinement(values, opt.tolerance_percent / to_percent, parent,
+                                              coarse_mesh.elements.size(), carried);
+    if (std::find(next.begin(), next.end(), true) == next.end()) break;  // nothing a sensor could flag
+    earlier = std::make_unique<EarlierRows>();
+    earlier->rows = std::move(kept_rows);
+    earlier->refined_surface.assign(t.surface_count(), false);
+    for (std::size_t e = 0; e < next.size(); ++e)
+      if (next[e]) earlier->refined_surface[t.mesh().elements[e].surface] = true;
     coarse = std::move(fine);
+    coarse_mesh = t.mesh();
+    split = next;
+    parent = t.refine(next);
+    earlier->parent = parent;
+    earlier->split = std::move(next);
   }
   return result;
 }
