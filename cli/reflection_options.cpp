@@ -25,8 +25,8 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
   o.options.push_back(command.add_option("--reflection-tolerance", o.tolerance,
                                          "Target of every sensor's estimated error of ERC + IRC, in percent of the "
                                          "unobstructed horizontal " + what + " (DF points; default 0.05): while it is "
-                                         "not met and --max-refinements allows, every element is split again (about "
-                                         "16 times the work)")
+                                         "not met and --max-refinements allows, the elements that matter most to the "
+                                         "sensors over it are split again")
                           ->check(CLI::PositiveNumber));
   o.options.push_back(command.add_option("--element-size", o.element_size,
                                          "Longest element edge near the sensors and apertures (model units; default: a "
@@ -35,8 +35,8 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "as large")
                           ->check(CLI::PositiveNumber));
   o.options.push_back(command.add_option("--max-refinements", o.max_refinements,
-                                         "Further rounds of splitting every element while the tolerance is not met "
-                                         "(default 0)")
+                                         "Further rounds of local refinement while the tolerance is not met "
+                                         "(default 2; 0: the first mesh and its uniform split only)")
                           ->check(CLI::Range(0, 8)));
   o.options.push_back(command.add_option("--element-grading", o.grading,
                                          "How fast elements grow away from the sensors and apertures: an element at "

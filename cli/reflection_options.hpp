@@ -27,7 +27,7 @@ struct ReflectionCliOptions {
   double ground_reflectance = 0.2;
   double tolerance = 0.05;  // percentage points of E_out (DF points), every sensor's ERC + IRC
   double element_size = 0;  // model units; 0: automatic (reflected_components.hpp)
-  int max_refinements = 0;
+  int max_refinements = 2;
   double grading = 0.5;     // farther from the sensors and apertures: edge ≤ grading × distance
   std::string transport = "reciprocal";  // or "collocated" (reciprocal_transport.hpp)
   std::vector<const CLI::Option*> options;  // those beside --components, for the notice

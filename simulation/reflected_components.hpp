@@ -27,15 +27,19 @@
 //   sample within 0.03 % of them; README, 2026-12-03). Without it the collocated rows' energy
 //   mismatch is reported (their reciprocity defect, O(h²)).
 //   Solve: M = ρ (E₀ + K' M) by Gauss–Seidel to roundoff.
-//   Error: each round solves two meshes, a coarse one (elements twice the asked size) and its
-//   uniform split, and reports the finer solution; every sensor's estimate is the difference of
-//   the two (ERC and IRC each) plus, through glass, the spread of T(μ) over each element's
-//   directions times what the element gives. That is the finer solution's error where halving
-//   the elements at least halves the error (first order; linear elements converge at second order
-//   where the exitance is smooth, measured 2.6 on a window room, so the actual error is then
-//   about a sixth of the estimate): an estimate, not a rigorous bound. While a sensor's estimate
-//   exceeds the tolerance and rounds remain, the finer mesh becomes the coarse one and is split
-//   again (four times the elements, about sixteen times the work).
+//   Error: the first round solves two meshes, a coarse one (elements twice the asked size) and
+//   its uniform split, and reports the finer solution; every sensor's estimate is the difference
+//   of the two (ERC and IRC each, per coarse element: |what it gives − what its children give|)
+//   plus, through glass, the spread of T(μ) over each element's directions times what the element
+//   gives. That is the finer solution's error where halving the elements at least halves the
+//   error (first order; linear elements converge at second order where the exitance is smooth,
+//   measured 2.6 on a window room, so the actual error is then about a sixth of the estimate): an
+//   estimate, not a rigorous bound. While a sensor's estimate exceeds the tolerance and rounds
+//   remain, the mesh is refined locally: the sensors over it flag the elements with the largest
+//   terms (local_refinement in the .cpp), the finer mesh becomes the coarse one and only the
+//   flagged elements are split; the others keep their terms in the estimate, and the new rows
+//   keep every entry of the elements not split (a round costs about the new elements' rows, the
+//   refined surfaces' visibility from the old nodes, and the sensors).
 //   Left out exactly: surface sides from which no light can reach a sensor (find_live_sides).
 
 #include <cstddef>
@@ -72,7 +76,10 @@ struct ReflectionOptions {
   // Longest element edge near the sensors and apertures (model units); 0: automatic_element_size.
   double element_size = 0;
   double grading = 0.5;              // farther away: edge ≤ grading × distance to them
-  int max_refinements = 0;           // further rounds of uniform splitting while the tolerance is not met
+  // Further rounds while some sensor's estimate exceeds the tolerance, each splitting only the
+  // elements those sensors flag (local refinement; see the top of this file). The command line's
+  // default is 2; here 0, the uniform first mesh that reflection_operator also uses.
+  int max_refinements = 0;
   // true: the collocated rows made reciprocal and closed (reciprocal_transport.hpp), conserving
   // energy to roundoff on every mesh; false: the rows as collocated at the nodes, whose energy
   // balance is off by the mesh's reciprocity defect (reported).
