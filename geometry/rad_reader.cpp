@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "geometry/input_checks.hpp"
+#include "geometry/obj_model.hpp"
 #include "geometry/rad_tessellation.hpp"
+#include "geometry/rad_transform.hpp"
 #include "geometry/text_scanner.hpp"
 
 namespace daylit {
@@ -144,6 +147,71 @@ void check_material(const Material& m) {
     throw input_error(m.where, m.type + " material " + printable(m.name) + ": " + problem);
 }
 
+namespace {
+
+// A `mesh` primitive ("modifier mesh id / 1+ file.rtm [transform] / 0 / 0") from the OBJ it was
+// compiled from (obj2mesh): Radiance's .rtm is a binary octree of its own, which daylit does not
+// read. The OBJ is the named file itself where that ends in .obj, else the same path with the
+// extension .obj; a relative path is taken from the working directory, as Radiance does, or
+// else from the folder of the file that names it. As in Radiance, a modifier other than void
+// applies to every face; with void each face takes the modifier its `usemtl` names, which must
+// be defined before the mesh (obj2mesh maps OBJ materials to the scene's modifiers).
+void read_mesh(const std::string& modifier, const std::string& id, const std::vector<std::string>& strings,
+               const std::string& name, const SourceLocation& where, bool aperture_file, RadContent& content) {
+  namespace fs = std::filesystem;
+  if (strings.empty()) throw input_error(where, "mesh " + printable(id) + " lacks its file name (1 string argument at least)");
+  const RadTransform transform =
+      parse_rad_transform(std::vector<std::string>(strings.begin() + 1, strings.end()), where);
+  fs::path file(strings[0]);
+  fs::path source = file;
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension != ".obj") source.replace_extension(".obj");
+  std::vector<fs::path> tried{source};
+  if (source.is_relative()) tried.push_back(fs::path(name).parent_path() / source);
+  std::string found;
+  for (const fs::path& p : tried) {
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) {
+      found = p.string();
+      break;
+    }
+  }
+  if (found.empty()) {
+    std::string message = "mesh " + printable(id) + ": daylit reads a mesh from the OBJ file it was made from (obj2mesh), "
+                          "not from Radiance's compiled " + printable(strings[0]) + "; no OBJ found at ";
+    for (std::size_t i = 0; i < tried.size(); ++i) message += (i ? " or " : "") + printable(tried[i].string());
+    throw input_error(where, message);
+  }
+  const ObjModel obj = read_obj_model(found);
+  for (const std::string& notice : obj.notices) content.notices.push_back(notice);
+  std::size_t faces = 0;
+  for (const ObjFace& face : obj.faces) {
+    Polygon poly = face.polygon;
+    poly.name = id + "." + std::to_string(faces++);
+    if (modifier != "void") {
+      poly.material = modifier;
+    } else if (poly.material.empty()) {
+      throw input_error(poly.where, "this face has no usemtl, and mesh " + printable(id) + " (" + where.str() +
+                                        ") has the modifier void: give the mesh a modifier, or the face a usemtl");
+    } else if (poly.material != "void" && !content.materials.count(poly.material) &&
+               !content.skipped_modifiers.count(poly.material)) {
+      throw input_error(poly.where, "usemtl " + printable(poly.material) + " names no modifier defined before mesh " +
+                                        printable(id) + " (" + where.str() + "); obj2mesh takes the OBJ's materials "
+                                        "from the scene's modifiers");
+    }
+    for (Vec3& v : poly.vertices) v = transform.apply(v);
+    if (transform.mirrors) std::reverse(poly.vertices.begin(), poly.vertices.end());
+    check_polygon(poly);
+    content.polygons.push_back({std::move(poly), aperture_file});
+  }
+  content.notices.push_back(where.str() + ": mesh " + printable(id) + " read from its OBJ source " + found + ": " +
+                            std::to_string(faces) + (faces == 1 ? " face" : " faces") +
+                            (strings.size() > 1 ? ", transformed" : ""));
+}
+
+}  // namespace
+
 void read_rad_text(const std::string& text, const std::string& name, bool aperture_file,
                    RadContent& content) {
   if (const std::string kind = foreign_file_kind(text); !kind.empty()) throw input_error({name, 1}, "this is " + kind);
@@ -249,6 +317,8 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
       Material material{id, type, std::move(strings), std::move(reals), where};
       check_material(material);
       content.materials[id] = std::move(material);
+    } else if (type == "mesh") {
+      read_mesh(modifier_name, id, strings, name, where, aperture_file, content);
     } else if (is_curved_primitive(type)) {
       const Tessellation t = tessellate_primitive(type, id, std::string(modifier.text), reals, where);
       for (const Polygon& facet : t.facets) {
@@ -266,7 +336,7 @@ void read_rad_text(const std::string& text, const std::string& name, bool apertu
                                 " (the sky comes from --sky, not from scene files)");
     } else {
       throw input_error(where, "unsupported primitive type " + printable(type) + " (" + printable(id) +
-                                   "); daylit reads the geometry polygon, sphere, ring, cylinder, tube, cone and cup "
+                                   "); daylit reads the geometry polygon, sphere, ring, cylinder, tube, cone, cup and mesh (from its OBJ) "
                                    "and the materials plastic, metal, trans, glass, mirror, glow, light, illum, BSDF, aBSDF");
     }
   }

@@ -3,6 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 #include "materials/scene_materials.hpp"
 #include "geometry/rad_reader.hpp"
@@ -18,6 +22,10 @@ RadContent read(const std::string& text, bool apertures = false) {
   RadContent content;
   read_rad_text(text, "scene.rad", apertures, content);
   return content;
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
 }
 
 }  // namespace
@@ -182,4 +190,55 @@ TEST_CASE("a command line names the program to run first, and a sky generator is
   CHECK_THROWS_WITH(read("\n!xform -n chair -t 1 0 0 chair.rad\n"),
                     Contains("scene.rad:2") && Contains("'xform'") && Contains("chair.rad > out.rad"));
   CHECK_THROWS_WITH(read("! gensky 6 21 12 +s\n"), Contains("generates a sky") && Contains("--sky"));
+}
+
+TEST_CASE("a mesh is read from the OBJ it was made from, transformed as xform transforms; without that OBJ it is an error saying so") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("daylit_mesh_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // A unit square in the plane z = 0, facing +z, whose material the scene defines.
+  write_file(dir / "square.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl white\nf 1 2 3 4\n");
+  write_file(dir / "loose.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");  // no usemtl
+  write_file(dir / "nowhere.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl nowhere\nf 1 2 3\n");
+  const std::string scene_path = (dir / "scene.rad").string();
+  const auto read_scene = [&](const std::string& text) {
+    RadContent content;
+    read_rad_text(text, scene_path, false, content);
+    return content;
+  };
+  const std::string white = "void plastic white 0 0 5 .5 .5 .5 0 0\nvoid plastic grey 0 0 5 .2 .2 .2 0 0\n";
+  const RadContent c = read_scene(white +
+                                  "void mesh as_is 1 square.rtm 0 0\n"                 // the face's own usemtl
+                                  "grey mesh turned 7 square.rtm -rz 90 -t 1 2 3 0 0\n"  // the mesh's modifier
+                                  "void mesh mirrored 2 square.rtm -mx 0 0\n");
+  REQUIRE(c.polygons.size() == 3);
+  const Polygon& a = c.polygons[0].polygon;
+  CHECK(a.name == "as_is.0");
+  CHECK(a.material == "white");
+  CHECK_THAT(a.where.str(), Contains("square.obj:6"));
+  CHECK(a.vertices == std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  // -rz 90 maps (x, y, z) to (−y, x, z) exactly, then -t moves it by (1, 2, 3).
+  const Polygon& b = c.polygons[1].polygon;
+  CHECK(b.material == "grey");
+  CHECK(b.vertices == std::vector<Vec3>{{1, 2, 3}, {1, 3, 3}, {0, 3, 3}, {0, 2, 3}});
+  // A mirror reverses the vertex order, so the face still faces +z, as xform keeps it.
+  const Polygon& m = c.polygons[2].polygon;
+  CHECK(m.vertices == std::vector<Vec3>{{0, 1, 0}, {-1, 1, 0}, {-1, 0, 0}, {0, 0, 0}});
+  CHECK(newell_normal(m.vertices).z > 0);
+  CHECK(std::any_of(c.notices.begin(), c.notices.end(), [](const std::string& n) {
+    return n.find("mesh 'turned'") != std::string::npos && n.find("square.obj: 1 face, transformed") != std::string::npos;
+  }));
+
+  CHECK_THROWS_WITH(read_scene(white + "void mesh gone 1 missing.rtm 0 0\n"),
+                    Contains("scene.rad:3") && Contains("missing.obj") && Contains("obj2mesh"));
+  CHECK_THROWS_WITH(read_scene(white + "void mesh copies 3 square.rtm -a 2 0 0\n"),
+                    Contains("scene.rad:3") && Contains("-a") && Contains("arrays of copies"));
+  CHECK_THROWS_WITH(read_scene(white + "void mesh bad 3 square.rtm -s 0 0 0\n"), Contains("scale must be positive"));
+  CHECK_THROWS_WITH(read_scene(white + "void mesh bad 3 square.rtm -rx ninety 0 0\n"), Contains("'ninety' is not a number"));
+  CHECK_THROWS_WITH(read_scene(white + "void mesh loose 1 loose.rtm 0 0\n"),
+                    Contains("loose.obj:4") && Contains("no usemtl"));
+  CHECK(read_scene(white + "grey mesh loose 1 loose.rtm 0 0\n").polygons.at(0).polygon.material == "grey");
+  CHECK_THROWS_WITH(read_scene(white + "void mesh named 1 nowhere.obj 0 0\n"),
+                    Contains("nowhere.obj:5") && Contains("'nowhere'") && Contains("names no modifier"));
+  fs::remove_all(dir);
 }
