@@ -635,6 +635,20 @@ struct EarlierRows {
   std::vector<std::size_t> parent;    // per element of the current mesh: the earlier one (refine_mesh)
   std::vector<bool> split;            // per earlier element
   std::vector<bool> refined_surface;  // per surface: some of its elements split
+  std::vector<std::size_t> current;   // per earlier element not split: its index now (else −1)
+  RadiosityMesh fresh;                // the current mesh with only its new elements listed per surface
+
+  // After Transport::refine(split) returned `parent_of`: `current` and `fresh` from them.
+  void refined(std::vector<bool> split_flags, std::vector<std::size_t> parent_of, const RadiosityMesh& mesh) {
+    split = std::move(split_flags);
+    parent = std::move(parent_of);
+    current.assign(split.size(), std::size_t(-1));
+    for (std::size_t e = 0; e < parent.size(); ++e)
+      if (!split[parent[e]]) current[parent[e]] = e;
+    fresh = mesh;
+    for (RadiositySurface& surface : fresh.surfaces)
+      std::erase_if(surface.elements, [&](std::size_t e) { return !split[parent[e]]; });
+  }
 };
 
 // Rows of K and first bounce at every node, in parallel over element sides; with `earlier`, what
@@ -644,18 +658,6 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t ne = mesh.elements.size();
   std::vector<ReceiverRow> rows(t.unknowns());
-  // The current index of every earlier element that was not split.
-  std::vector<std::size_t> current;
-  // The mesh with only its new elements listed on each surface: what a kept row lacks.
-  RadiosityMesh fresh;
-  if (earlier != nullptr) {
-    current.assign(earlier->split.size(), std::size_t(-1));
-    for (std::size_t e = 0; e < ne; ++e)
-      if (!earlier->split[earlier->parent[e]]) current[earlier->parent[e]] = e;
-    fresh = mesh;
-    for (RadiositySurface& surface : fresh.surfaces)
-      std::erase_if(surface.elements, [&](std::size_t e) { return !earlier->split[earlier->parent[e]]; });
-  }
   const auto locals = for_each_sensor<Local>(2 * ne, 8, progress, [&](std::size_t i, Local& local) {
     const std::size_t e = i / 2;
     const int side = int(i % 2);
@@ -670,11 +672,11 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
         r.first_bounce = before.first_bounce;
         r.direct_empty = before.direct_empty;
         for (const auto& [j, c] : before.row) {
-          const std::size_t source = current[j / 6];
+          const std::size_t source = earlier->current[j / 6];
           if (source != std::size_t(-1)) r.row.emplace_back(std::uint32_t(unknown(source, int(j / 3 % 2), int(j % 3))), c);
         }
         t.transport(
-            fresh, el.nodes[k], n, el.surface, local.counters,
+            earlier->fresh, el.nodes[k], n, el.surface, local.counters,
             [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
               for (int m = 0; m < 3; ++m)
                 if (c[m] != 0) r.row.emplace_back(std::uint32_t(unknown(src, src_side, m)), c[m]);
@@ -850,13 +852,52 @@ struct SensorLocal {
   std::vector<double> through, inside;  // per coarse element: coarse minus fine
 };
 
+// What a sensor's transport was on the finer mesh of a round, for the next local round: an
+// element not split then gives the same coefficients, and a split one gives, as the coarser
+// element, the coefficients it gave as the finer one; only the new elements need visibility and
+// kernels again. Kept only where a further round may follow.
+struct SensorEntry {
+  std::uint32_t element = 0;
+  std::uint8_t side = 0;
+  bool through = false;
+  double spread = 0;
+  std::array<double, 3> c{};
+};
+struct SensorCache {
+  // At most this many bytes of entries (the office's 2,400 sensors take about 0.5 GB): beyond it
+  // the next round finds every sensor's transport again.
+  static constexpr std::size_t kMaxBytes = std::size_t(1) << 30;
+  bool filled = false;  // entries are of the finer mesh of the round before
+  bool keep = false;    // this round's entries are to be kept
+  std::atomic<std::size_t> bytes{0};
+  std::atomic<bool> overflowed{false};
+  std::vector<std::vector<std::vector<SensorEntry>>> entries;  // per grid, per sensor
+  std::vector<std::vector<double>> ground;                     // per grid, per sensor: far ground through apertures
+};
+
 // `parent`: per element of the finer mesh (t's), the coarser element it is or came from; `split`:
 // per coarser element, whether it was split; `carried`: per grid and sensor (empty: none).
+// `cache`, where given: read where filled (with `change`, the refinement since), written where kept.
 SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh, const std::vector<double>& coarse,
                            const std::vector<double>& fine, const std::vector<std::size_t>& parent,
                            const std::vector<bool>& split, const std::vector<std::vector<double>>& carried,
                            const std::vector<const SensorGrid*>& grids, ReflectionResult& result,
-                           const ProgressCallback& progress) {
+                           const ProgressCallback& progress, SensorCache* cache = nullptr,
+                           const EarlierRows* change = nullptr) {
+  const bool read = cache != nullptr && cache->filled && change != nullptr;
+  const bool keep = cache != nullptr && cache->keep;
+  if (keep) {
+    cache->bytes = 0;
+    cache->overflowed = false;
+  }
+  if (keep && !read) {
+    cache->entries.assign(grids.size(), {});
+    cache->ground.assign(grids.size(), {});
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      cache->entries[g].resize(grids[g]->sensors.size());
+      cache->ground[g].resize(grids[g]->sensors.size());
+    }
+  }
   SensorValues out;
   const std::size_t nc = coarse_mesh.elements.size();
   std::size_t before = 0;  // sensors of the earlier grids: progress counts over all of them
@@ -872,24 +913,59 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       const Sensor& s = grid->sensors[i];
       local.through.assign(nc, 0.0);
       local.inside.assign(nc, 0.0);
-      const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
-      double e_through = a.ground, e_inside = 0, e_spread = 0;
-      // Both meshes from one set of visibility queries.
-      const RadiosityMesh* meshes[] = {&coarse_mesh, &t.mesh()};
-      t.transport(meshes, s.position, s.normal, std::size_t(-1), local.counters,
-                  [&](std::size_t m, std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
-                    double value = 0;
-                    if (m == 0) {
-                      if (!split[e]) return;
-                      for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
-                      (through ? local.through : local.inside)[e] += value;
-                      return;
-                    }
-                    for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
-                    (through ? e_through : e_inside) += value;
-                    if (split[parent[e]]) (through ? local.through : local.inside)[parent[e]] -= value;
-                    e_spread += sp * std::abs(value);
-                  });
+      double e_through = 0, e_inside = 0, e_spread = 0;
+      std::vector<SensorEntry> next;
+      const auto coarse_sink = [&](std::size_t e, int side, const std::array<double, 3>& c, bool through) {
+        if (!split[e]) return;
+        double value = 0;
+        for (int k = 0; k < 3; ++k) value += c[k] * coarse[unknown(e, side, k)];
+        (through ? local.through : local.inside)[e] += value;
+      };
+      const auto fine_sink = [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
+        double value = 0;
+        for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
+        (through ? e_through : e_inside) += value;
+        if (split[parent[e]]) (through ? local.through : local.inside)[parent[e]] -= value;
+        e_spread += sp * std::abs(value);
+        if (keep) next.push_back({std::uint32_t(e), std::uint8_t(side), through, sp, c});
+      };
+      if (read) {
+        // The round before's entries, then the new elements alone (on the surfaces that have them).
+        e_through = cache->ground[g][i];
+        for (const SensorEntry& en : cache->entries[g][i]) {
+          if (split[en.element])
+            coarse_sink(en.element, en.side, en.c, en.through);
+          else
+            fine_sink(change->current[en.element], en.side, en.c, en.through, en.spread);
+        }
+        t.transport(
+            change->fresh, s.position, s.normal, std::size_t(-1), local.counters,
+            [&](std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
+              fine_sink(e, side, c, through, sp);
+            },
+            &change->refined_surface);
+      } else {
+        const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
+        e_through = a.ground;
+        if (keep) cache->ground[g][i] = a.ground;
+        // Both meshes from one set of visibility queries.
+        const RadiosityMesh* meshes[] = {&coarse_mesh, &t.mesh()};
+        t.transport(meshes, s.position, s.normal, std::size_t(-1), local.counters,
+                    [&](std::size_t m, std::size_t e, int side, const std::array<double, 3>& c, bool through, double sp) {
+                      if (m == 0)
+                        coarse_sink(e, side, c, through);
+                      else
+                        fine_sink(e, side, c, through, sp);
+                    });
+      }
+      if (keep) {
+        const std::size_t bytes = next.size() * sizeof(SensorEntry);
+        if (cache->bytes.fetch_add(bytes) + bytes > SensorCache::kMaxBytes) {
+          cache->overflowed = true;
+          next = {};
+        }
+        cache->entries[g][i] = std::move(next);
+      }
       SensorTerms& mine = terms[i];
       std::vector<std::pair<std::uint32_t, double>>& largest = mine.largest;
       for (std::size_t p = 0; p < nc; ++p) {
@@ -917,6 +993,10 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
     out.irc.push_back(std::move(irc));
     out.estimate.push_back(std::move(estimate));
     out.terms.push_back(std::move(terms));
+  }
+  if (cache != nullptr) {
+    cache->filled = keep && !cache->overflowed;
+    if (!cache->filled) cache->entries.clear();
   }
   return out;
 }
@@ -1027,6 +1107,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   std::vector<std::size_t> parent = t.split_all();
   std::vector<std::vector<double>> carried;  // per grid and sensor: the estimate of elements not split since
   std::unique_ptr<EarlierRows> earlier;
+  SensorCache sensor_cache;
   for (int round = 0;; ++round) {
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a chain of + here.
     std::string name = "radiosity: ";
@@ -1043,7 +1124,6 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     std::vector<ReceiverRow> kept_rows;
     MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name, earlier.get(),
                                    more ? &kept_rows : nullptr);
-    earlier.reset();
     clock = std::chrono::steady_clock::now();
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
@@ -1052,9 +1132,12 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     RadiosityMesh split_part = coarse_mesh;
     for (RadiositySurface& surface : split_part.surfaces)
       std::erase_if(surface.elements, [&](std::size_t e) { return !split[e]; });
+    sensor_cache.keep = more;
     const SensorValues values =
         sensor_values(t, split_part, coarse.exitance, fine.exitance, parent, split, carried, grids, result,
-                      stage_progress(opt, "reflections at the sensors", "sensors", sensors));
+                      stage_progress(opt, "reflections at the sensors", "sensors", sensors), &sensor_cache,
+                      earlier.get());
+    earlier.reset();
     result.stages.push_back({round_name + ": sensors (both meshes' transport and the estimate)", lap(clock)});
     double worst = 0;
     for (std::size_t g = 0; g < grids.size(); ++g) {
@@ -1093,8 +1176,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     coarse_mesh = t.mesh();
     split = next;
     parent = t.refine(next);
-    earlier->parent = parent;
-    earlier->split = std::move(next);
+    earlier->refined(std::move(next), parent, t.mesh());
   }
   return result;
 }
