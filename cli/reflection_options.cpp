@@ -144,11 +144,12 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"max_estimate_percent", r.max_error_percent},
       {"met", r.max_error_percent <= opt.tolerance},
       {"how",
-       "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from a mesh of "
-       "elements twice as large (the reported one is its uniform split), the two differences added, plus, through "
-       "glass, the spread of T over each element's directions times what it gives. It covers the error where halving "
-       "the elements at least halves it; linear elements do better (second order where the exitance is smooth), so "
-       "the actual error is usually a fraction of it"}};
+       "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from the mesh "
+       "it was split from (elements twice as large), element by element (|what an element gives - what its four "
+       "children give|), summed, plus, through glass, the spread of T over each element's directions times what it "
+       "gives; after local rounds, elements not split since keep the terms they had. It covers the error where "
+       "halving the elements at least halves it; linear elements do better (second order where the exitance is "
+       "smooth), so the actual error is usually a fraction of it"}};
   const bool reciprocal = opt.transport == "reciprocal";
   j["energy_balance"] = {
       {"first_bounce_flux", r.flux_first_bounce},
