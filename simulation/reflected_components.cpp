@@ -864,9 +864,7 @@ struct SensorEntry {
   std::array<double, 3> c{};
 };
 struct SensorCache {
-  // At most this many bytes of entries (the office's 2,400 sensors take about 0.5 GB): beyond it
-  // the next round finds every sensor's transport again.
-  static constexpr std::size_t kMaxBytes = std::size_t(1) << 30;
+  std::size_t max_bytes = 0;  // ReflectionOptions::sensor_cache_bytes: beyond it, nothing is kept
   bool filled = false;  // entries are of the finer mesh of the round before
   bool keep = false;    // this round's entries are to be kept
   std::atomic<std::size_t> bytes{0};
@@ -960,7 +958,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       }
       if (keep) {
         const std::size_t bytes = next.size() * sizeof(SensorEntry);
-        if (cache->bytes.fetch_add(bytes) + bytes > SensorCache::kMaxBytes) {
+        if (cache->bytes.fetch_add(bytes) + bytes > cache->max_bytes) {
           cache->overflowed = true;
           next = {};
         }
@@ -1108,6 +1106,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   std::vector<std::vector<double>> carried;  // per grid and sensor: the estimate of elements not split since
   std::unique_ptr<EarlierRows> earlier;
   SensorCache sensor_cache;
+  sensor_cache.max_bytes = opt.sensor_cache_bytes;
   for (int round = 0;; ++round) {
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a chain of + here.
     std::string name = "radiosity: ";
