@@ -24,7 +24,7 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                           ->check(CLI::Range(0.0, 0.999999)));
   o.options.push_back(command.add_option("--reflection-tolerance", o.tolerance,
                                          "Target of every sensor's estimated error of ERC + IRC, in percent of the "
-                                         "unobstructed horizontal " + what + " (DF points; default 0.05): while it is "
+                                         "unobstructed horizontal illuminance (DF points; default 0.05): while it is "
                                          "not met and --max-refinements allows, the elements that matter most to the "
                                          "sensors over it are split again")
                           ->check(CLI::PositiveNumber));
