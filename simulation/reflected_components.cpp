@@ -1085,8 +1085,9 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     return result;
   }
 
-  // The coarse mesh at twice the asked element size; each round solves its uniform split too and
-  // reports the finer solution, with the difference of the two as the error estimate.
+  // The coarse mesh at twice the asked element size; each round solves a finer mesh (round 0:
+  // its uniform split; later rounds: a local refinement of the round before's) and reports the
+  // finer solution, with the element-by-element difference of the two as the error estimate.
   auto clock = std::chrono::steady_clock::now();
   Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
   result.stages.push_back({"mesh and visibility engines", lap(clock)});
