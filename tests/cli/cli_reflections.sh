@@ -57,6 +57,26 @@ for k in ("sc_percent", "erc_percent", "irc_percent", "reflection_error_estimate
 assert 0.5 < g["components"]["irc_percent"]["mean"] < 1.5, g["components"]["irc_percent"]
 PY
 
+# The default local rounds (--max-refinements 2): the same room from elements of size 3 refines
+# where the sensors over the tolerance need it, lowers the worst estimate round by round and
+# stops when it is met or the rounds are spent.
+"$daylit" df "${room[@]}" --components all --element-size 3 --threads 2 --out "$work/local.csv" \
+  --summary "$work/local.json" --quiet || fail "df with local rounds"
+python3 - "$work/all.json" "$work/local.json" <<'PY' || fail "local rounds in the summary"
+import json, sys
+uniform, local = (json.load(open(p))["components"] for p in sys.argv[1:])
+m, e = local["mesh"], local["error"]
+by_round = m["max_error_percent_by_round"]
+assert uniform["mesh"]["refinement_rounds"] == 0 and len(uniform["mesh"]["max_error_percent_by_round"]) == 1
+assert 1 <= m["refinement_rounds"] <= 2 and len(by_round) == m["refinement_rounds"] + 1, m
+assert by_round[0] == uniform["mesh"]["max_error_percent_by_round"][0], (by_round, uniform["mesh"])
+assert by_round[-1] < by_round[0] and e["max_estimate_percent"] == by_round[-1], (by_round, e)
+assert e["met"] or m["refinement_rounds"] == 2, e
+assert m["elements"] > uniform["mesh"]["elements"], (m, uniform["mesh"])
+assert abs(local["energy_balance"]["relative_mismatch"]) < 1e-9, local["energy_balance"]
+assert any(x["stage"].startswith("round 1") for x in local["stages"]), local["stages"]
+PY
+
 # --reflection-transport collocated reports its energy mismatch, the mesh's reciprocity defect
 # (not zero, and small: 4.7e-4 of the first-bounce flux at this coarse mesh), and changes the IRC
 # by the order of that defect.
