@@ -1001,9 +1001,10 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 
 // The next local refinement (DESIGN.md §4): every sensor whose estimate exceeds `tolerance` flags
 // its largest terms, largest first, until what is left of them (R), with its carried estimate, its
-// glass spread and a quarter of the flagged ones (F/4: what their split leaves at second order,
-// the order the window room's estimate falls at, test_reflections), meets the tolerance; the
-// flags of all sensors together are split. Each sensor then carries, besides what it
+// glass spread and a quarter of the flagged ones (F/4: what their split leaves at second order;
+// measured, the split elements' children's terms summed over all sensors against the split
+// terms: 0.26 and 0.27 on the room sample's second and third rounds, 0.18 on the office's
+// second), meets the tolerance; the flags of all sensors together are split. Each sensor then carries, besides what it
 // carried, the terms of the elements not split, as they were: an element's estimate stays until
 // it is refined. A term of an element split for another sensor but not among a sensor's kept
 // candidates is carried too, so the carried part may count it twice, never too little. Returns
