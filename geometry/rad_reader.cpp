@@ -162,11 +162,8 @@ void read_mesh(const std::string& modifier, const std::string& id, const std::ve
   if (strings.empty()) throw input_error(where, "mesh " + printable(id) + " lacks its file name (1 string argument at least)");
   const RadTransform transform =
       parse_rad_transform(std::vector<std::string>(strings.begin() + 1, strings.end()), where);
-  fs::path file(strings[0]);
-  fs::path source = file;
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (extension != ".obj") source.replace_extension(".obj");
+  fs::path source(strings[0]);
+  if (!is_obj_path(strings[0])) source.replace_extension(".obj");
   std::vector<fs::path> tried{source};
   if (source.is_relative()) tried.push_back(fs::path(name).parent_path() / source);
   std::string found;

@@ -1,8 +1,9 @@
 #include "geometry/rad_transform.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <numbers>
+
+#include "geometry/text_scanner.hpp"
 
 namespace daylit {
 
@@ -10,12 +11,7 @@ namespace {
 
 double number(const std::vector<std::string>& args, std::size_t i, const std::string& option, const SourceLocation& where) {
   if (i >= args.size()) throw input_error(where, "transform option " + option + " lacks its number");
-  const std::string& word = args[i];
-  double value = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
-    throw input_error(where, "transform option " + option + ": '" + word + "' is not a number");
-  return value;
+  return parse_real({args[i], where.line}, where, "transform option " + option);
 }
 
 // cos and sin of `degrees`: exact at multiples of 90.

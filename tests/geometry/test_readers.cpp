@@ -234,7 +234,7 @@ TEST_CASE("a mesh is read from the OBJ it was made from, transformed as xform tr
   CHECK_THROWS_WITH(read_scene(white + "void mesh copies 3 square.rtm -a 2 0 0\n"),
                     Contains("scene.rad:3") && Contains("-a") && Contains("arrays of copies"));
   CHECK_THROWS_WITH(read_scene(white + "void mesh bad 3 square.rtm -s 0 0 0\n"), Contains("scale must be positive"));
-  CHECK_THROWS_WITH(read_scene(white + "void mesh bad 3 square.rtm -rx ninety 0 0\n"), Contains("'ninety' is not a number"));
+  CHECK_THROWS_WITH(read_scene(white + "void mesh bad 3 square.rtm -rx ninety 0 0\n"), Contains("expected a number for transform option -rx, found 'ninety'"));
   CHECK_THROWS_WITH(read_scene(white + "void mesh loose 1 loose.rtm 0 0\n"),
                     Contains("loose.obj:4") && Contains("no usemtl"));
   CHECK(read_scene(white + "grey mesh loose 1 loose.rtm 0 0\n").polygons.at(0).polygon.material == "grey");
