@@ -593,6 +593,12 @@ class Transport {
 
 std::size_t unknown(std::size_t element, int side, int k) { return 6 * element + 3 * std::size_t(side) + std::size_t(k); }
 
+// Appends element e's coefficients c (side `side`, one per node) to a row of K, leaving out zeros.
+void add_coefficients(TransportRow& row, std::size_t e, int side, const std::array<double, 3>& c) {
+  for (int k = 0; k < 3; ++k)
+    if (c[k] != 0) row.emplace_back(std::uint32_t(unknown(e, side, k)), c[k]);
+}
+
 // What a receiver on an element side needs: its first bounce and its row of K.
 struct ReceiverRow {
   double first_bounce = 0;
@@ -606,10 +612,8 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
   const std::size_t own = t.mesh().surfaces[own_surface].occluder;
   const auto a = t.through_apertures(x, n, own, true, counters);
   r.first_bounce = a.sky + a.ground + t.direct(x, n, own, counters, r.direct_empty);
-  t.transport(t.mesh(), x, n, own_surface, counters, [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) {
-    for (int k = 0; k < 3; ++k)
-      if (c[k] != 0) r.row.emplace_back(std::uint32_t(unknown(e, side, k)), c[k]);
-  });
+  t.transport(t.mesh(), x, n, own_surface, counters,
+              [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) { add_coefficients(r.row, e, side, c); });
   return r;
 }
 
@@ -625,6 +629,15 @@ ProgressCallback stage_progress(const ReflectionOptions& options, const std::str
   return [&options, stage, unit, total](std::size_t done) { options.on_progress(stage, unit, done, total); };
 }
 
+// The mesh with only the elements `listed` keeps in its surfaces' lists (elements and edges
+// unchanged, so indices stay those of `mesh`): what transport() is to compute for, alone.
+template <class Keep>
+RadiosityMesh listing_only(const RadiosityMesh& mesh, Keep&& listed) {
+  RadiosityMesh out = mesh;
+  for (RadiositySurface& surface : out.surfaces) std::erase_if(surface.elements, [&](std::size_t e) { return !listed(e); });
+  return out;
+}
+
 // What a mesh's rows can take from those of the mesh it was refined from (Transport::refine): an
 // element not split keeps its nodes, so its first bounce, and its row's entries for every source
 // element not split (a coefficient of K depends on the node and the source element alone); only
@@ -638,16 +651,16 @@ struct EarlierRows {
   std::vector<std::size_t> current;   // per earlier element not split: its index now (else −1)
   RadiosityMesh fresh;                // the current mesh with only its new elements listed per surface
 
-  // After Transport::refine(split) returned `parent_of`: `current` and `fresh` from them.
+  // After Transport::refine(split) returned `parent_of`: the rest from them.
   void refined(std::vector<bool> split_flags, std::vector<std::size_t> parent_of, const RadiosityMesh& mesh) {
     split = std::move(split_flags);
     parent = std::move(parent_of);
     current.assign(split.size(), std::size_t(-1));
     for (std::size_t e = 0; e < parent.size(); ++e)
       if (!split[parent[e]]) current[parent[e]] = e;
-    fresh = mesh;
-    for (RadiositySurface& surface : fresh.surfaces)
-      std::erase_if(surface.elements, [&](std::size_t e) { return !split[parent[e]]; });
+    fresh = listing_only(mesh, [&](std::size_t e) { return split[parent[e]]; });
+    refined_surface.clear();
+    for (const RadiositySurface& surface : fresh.surfaces) refined_surface.push_back(!surface.elements.empty());
   }
 };
 
@@ -678,8 +691,7 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
         t.transport(
             earlier->fresh, el.nodes[k], n, el.surface, local.counters,
             [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
-              for (int m = 0; m < 3; ++m)
-                if (c[m] != 0) r.row.emplace_back(std::uint32_t(unknown(src, src_side, m)), c[m]);
+              add_coefficients(r.row, src, src_side, c);
             },
             &earlier->refined_surface);
       } else {
@@ -1004,9 +1016,9 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 // glass spread and a quarter of the flagged ones (F/4: what their split leaves at second order;
 // measured, the split elements' children's terms summed over all sensors against the split
 // terms: 0.26 and 0.27 on the room sample's second and third rounds, 0.18 on the office's
-// second), meets the tolerance; the flags of all sensors together are split. Each sensor then carries, besides what it
-// carried, the terms of the elements not split, as they were: an element's estimate stays until
-// it is refined. A term of an element split for another sensor but not among a sensor's kept
+// second), meets the tolerance; the flags of all sensors together are split. Each sensor then
+// carries, besides what it carried, the terms of the elements not split, as they were: an
+// element's estimate stays until it is refined. A term of an element split for another sensor but not among a sensor's kept
 // candidates is carried too, so the carried part may count it twice, never too little. Returns
 // the flags per element of the finer mesh (children of a flagged coarser element).
 std::vector<bool> local_refinement(const SensorValues& values, double tolerance, const std::vector<std::size_t>& parent,
@@ -1130,9 +1142,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
     // The coarser mesh as the sensors need it: only its split elements give terms, so each
     // surface lists those alone (a surface none of whose elements was split, none).
-    RadiosityMesh split_part = coarse_mesh;
-    for (RadiositySurface& surface : split_part.surfaces)
-      std::erase_if(surface.elements, [&](std::size_t e) { return !split[e]; });
+    const RadiosityMesh split_part = listing_only(coarse_mesh, [&](std::size_t e) { return split[e]; });
     sensor_cache.keep = more;
     const SensorValues values =
         sensor_values(t, split_part, coarse.exitance, fine.exitance, parent, split, carried, grids, result,
@@ -1170,9 +1180,6 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     if (std::find(next.begin(), next.end(), true) == next.end()) break;  // nothing a sensor could flag
     earlier = std::make_unique<EarlierRows>();
     earlier->rows = std::move(kept_rows);
-    earlier->refined_surface.assign(t.surface_count(), false);
-    for (std::size_t e = 0; e < next.size(); ++e)
-      if (next[e]) earlier->refined_surface[t.mesh().elements[e].surface] = true;
     coarse = std::move(fine);
     coarse_mesh = t.mesh();
     split = next;
@@ -1230,8 +1237,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
           node.views = t.views(el.nodes[k], normal, own, true, counters);
           t.transport(mesh, el.nodes[k], normal, el.surface, counters,
                       [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
-                        for (int j = 0; j < 3; ++j)
-                          if (c[j] != 0) rows[u].emplace_back(std::uint32_t(unknown(src, src_side, j)), c[j]);
+                        add_coefficients(rows[u], src, src_side, c);
                       });
         }
       });
