@@ -173,6 +173,7 @@ struct ApertureInfo {
   Vec3 normal;  // unit
   double area;
   double transmittance;
+  double reflectance = 0;            // the pane's diffuse reflectance, both sides (Aperture::reflectance)
   std::vector<double> angular;       // empty: constant
   std::vector<Triangle> triangles;   // for sampling points by area
   std::vector<double> cumulative;    // cumulative triangle areas, last = area
@@ -218,6 +219,7 @@ TracerScene build(const Scene& scene) {
     const Vec3 n = newell_normal(ap.polygon.vertices);
     info.normal = norm(n) > 0 ? normalized(n) : Vec3{0, 0, 1};
     info.transmittance = ap.transmittance;
+    info.reflectance = ap.reflectance;
     info.angular = ap.angular_transmittance;
     if (norm(n) > 0)
       for (const ConvexPiece& piece : convex_pieces(ap.polygon, a)) add_fan(piece.vertices, n_o + std::uint32_t(a), info.triangles);
@@ -231,6 +233,8 @@ TracerScene build(const Scene& scene) {
     s.aperture_cumulative.push_back(s.aperture_area);
     s.apertures.push_back(std::move(info));
   }
+  // The panes as surfaces too (index n_o + a), for the paths that reflect off them.
+  for (const ApertureInfo& a : s.apertures) s.surfaces.push_back({a.normal, a.reflectance});
   s.offset = all.empty() ? 0 : kRelativeOffset * norm(hi - lo);
   s.bvh = TriangleBvh(std::move(all));
   return s;
@@ -250,10 +254,14 @@ double aperture_transmittance(const ApertureInfo& a, const Vec3& d) noexcept {
   return a.angular.empty() ? a.transmittance : evaluate_polynomial(a.angular, std::abs(dot(a.normal, d)));
 }
 
-// Follows o + t·d (d unit) through the apertures, skipping the occluder `from`.
-Walk walk(const TracerScene& s, const Vec3& o, const Vec3& d, std::uint32_t from) noexcept {
+// Follows o + t·d (d unit) through the apertures, skipping the object `from` (an occluder, or
+// n_o + a: the pane of aperture a). A pane that reflects (ρ_p > 0) is a random event: the ray
+// passes with probability p = T/(T + ρ_p), its throughput times T/p, or stops on the pane as on a
+// surface, its throughput times 1/(1 − p) (the surface's ρ_p then applies): unbiased for both
+// parts, and the deterministic crossing where ρ_p = 0.
+Walk walk(const TracerScene& s, const Vec3& o, const Vec3& d, std::uint32_t from, Xoshiro256& rng) noexcept {
   Walk w;
-  const auto n_o = std::uint32_t(s.surfaces.size());
+  const auto n_o = std::uint32_t(s.surfaces.size() - s.apertures.size());
   double t_min = 0;
   std::uint32_t crossed = kNone;
   while (true) {
@@ -265,8 +273,19 @@ Walk walk(const TracerScene& s, const Vec3& o, const Vec3& d, std::uint32_t from
       return w;
     }
     const std::uint32_t a = hit.object - n_o;
+    const double t = aperture_transmittance(s.apertures[a], d), rho = s.apertures[a].reflectance;
+    if (rho > 0) {
+      const double pass = std::max(t, 0.0) / (std::max(t, 0.0) + rho);  // the fit's T may dip below 0 at grazing
+      if (!(rng.uniform() < pass)) {
+        w.surface = hit.object;
+        w.point = o + hit.t * d;
+        w.transmittance /= 1 - pass;
+        return w;
+      }
+      w.transmittance /= pass;
+    }
     if (w.first_aperture == kNone) w.first_aperture = a, w.first_aperture_t = hit.t;
-    w.transmittance *= aperture_transmittance(s.apertures[a], d);
+    w.transmittance *= t;
     t_min = hit.t;
     crossed = hit.object;
   }
@@ -319,7 +338,7 @@ class Tracer {
   void path(const Sensor& sensor, double xi1, double xi2, Xoshiro256& rng, double& sc, std::vector<double>& erc,
             std::vector<double>& irc) const noexcept {
     const Vec3 d0 = cosine_direction(sensor.normal, xi1, xi2);
-    const Walk first = walk(s_, sensor.position, d0, kNone);
+    const Walk first = walk(s_, sensor.position, d0, kNone, rng);
     double beta = kPi * first.transmittance;  // E ≈ π·L(d) under cosine sampling
     if (first.surface == kNone) {
       if (d0.z > 0) sc += beta * environment(d0);
@@ -349,7 +368,7 @@ class Tracer {
         const Vec3 d = to / distance;
         const double cos_x = dot(n, d);
         if (cos_x > 0 && distance > 0) {
-          const Walk w = walk(s_, origin, d, surface);
+          const Walk w = walk(s_, origin, d, surface, rng);
           // Counted only where a is the first aperture crossed (each direction belongs to one).
           if (w.surface == kNone && w.first_aperture == a) {
             const double p_nee = nee_density(a, w.first_aperture_t, d), p_bsdf = cos_x / kPi;
@@ -361,7 +380,7 @@ class Tracer {
       // Continuation: cosine sampling, throughput × ρ.
       const Vec3 d = cosine_direction(n, rng.uniform(), rng.uniform());
       beta *= info.reflectance;
-      const Walk w = walk(s_, origin, d, surface);
+      const Walk w = walk(s_, origin, d, surface, rng);
       if (w.surface == kNone) {
         double weight = 1;
         if (w.first_aperture != kNone) {
@@ -471,7 +490,7 @@ std::vector<std::vector<double>> sampled_patch_coefficients(const Scene& scene, 
         const double xi1 = (double(a) + rng.uniform()) / double(nx), xi2 = (double(b) + rng.uniform()) / double(ny);
         const Vec3 d = cosine_direction(sensor.normal, xi1, xi2);
         if (!(d.z > 0)) continue;
-        const Walk w = walk(s, sensor.position, d, kNone);
+        const Walk w = walk(s, sensor.position, d, kNone, rng);
         if (w.surface != kNone || w.first_aperture == kNone) continue;
         out[i][patch_of(d)] += kPi * w.transmittance / double(samples);
       }

@@ -8,10 +8,13 @@
 // Physics (the radiosity's conventions):
 // - Occluders are opaque planar polygons, two-sided Lambertian reflectors of diffuse reflectance ρ
 //   (materials/surface_reflectance.hpp; no material: black) on both sides.
-// - Apertures do not reflect: a ray that crosses one is multiplied by its transmittance at that
-//   incidence (τ, or glass's Σ c_k μ^k with μ = |cos| of incidence on the pane, unclamped, as the
-//   exact sky component integrates it) and goes on. Panes in series multiply (the exact
-//   `sky_component` adds them instead: README, "apertures do not occlude each other").
+// - A ray that crosses an aperture is multiplied by its transmittance at that incidence (τ, or
+//   glass's Σ c_k μ^k with μ = |cos| of incidence on the pane, unclamped, as the exact sky
+//   component integrates it) and goes on. Panes in series multiply (the exact `sky_component`
+//   adds them instead: README, "apertures do not occlude each other"). A pane of diffuse
+//   reflectance ρ_p > 0 (Aperture::reflectance: glass, trans) is also a two-sided Lambertian
+//   reflector: at each pane met the ray passes with probability T/(T + ρ_p) or reflects there,
+//   each branch weighted so that both are unbiased (path_tracer.cpp, walk).
 // - A ray that meets nothing sees the environment: the sky (overcast (1 + 2u_z)/3 or uniform 1)
 //   for u_z > 0, the far ground of uniform luminance ρ_g·E_out/π for u_z < 0 (Radiance gensky's
 //   ground glow).

@@ -259,9 +259,8 @@ int run_annual(AnnualCommandOptions opt) {
                   {"coarse_mesh_elements", coarse_op->elements},
                   {"surface_sides_solved", fine_op->sides_solved},
                   {"surface_sides_left_out", fine_op->sides_left_out}}},
-        {"left_out", {{"specular", "specular parts of plastic and metal are reflected diffusely (see materials)"},
-                      {"glass_reflection", "light from the room that meets a window leaves (glass's own reflection is "
-                                           "not modelled)"}}},
+        {"left_out", {{"specular", "specular parts of plastic and metal, and the reflection of glass and trans panes, "
+                                   "are reflected diffusely (see materials; their energy is kept)"}}},
         {"run_time_s", {{"operators", operator_time}, {"hours", reflected_hours_time}}}};
   } else {
     summary["components"] = {

@@ -125,7 +125,8 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
     return j;
   }
   j["method"] =
-      "radiosity over every reflecting polygon, both sides, triangles of linearly varying exitance (3 nodes inside "
+      "radiosity over every reflecting polygon and every reflecting pane (glass, trans: see materials), both sides, "
+      "triangles of linearly varying exitance (3 nodes inside "
       "each, the degree-2 rule's points); first bounce exact (sky and far ground through the apertures, and seen "
       "directly through a box around the model); transport exact per element (Chen-Arvo linear luminaire over the "
       "exactly visible part, occluders cut to the luminaire's side of its plane); ERC: far ground and surfaces seen "
@@ -158,8 +159,8 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"relative_mismatch", r.balance_mismatch},
       {"how",
        unit + ": what the sky and far ground put on all surfaces (each element side's first bounce by the nodes' "
-       "degree-2 rule) = what they absorb + what leaves them unreceived (each node's exitance times the part of its "
-       "view that meets no element). " +
+       "degree-2 rule) = what they absorb (a pane's share: what it does not reflect, transmitted or absorbed) + "
+       "what leaves them unreceived (each node's exitance times the part of its view that meets no element). " +
        (reciprocal
             ? std::string("The transport is reciprocal and closed (see transport), so the discrete system conserves "
                           "energy and the mismatch is the solver's roundoff; the collocation's own reciprocity "

@@ -19,6 +19,10 @@ struct Aperture {
   // (materials/glass_transmittance.hpp), and the fit's maximum error; empty: T is constant.
   std::vector<double> angular_transmittance{};
   double angular_fit_error = 0;
+  // The pane's diffuse reflectance, the same from both sides: what the reflected components take
+  // it to send back as Lambertian exitance (glass: 2∫R(μ)μ dμ of Radiance's model; trans: its
+  // reflected parts; materials/scene_materials.cpp). 0: the light that meets it passes or is lost.
+  double reflectance = 0;
 };
 
 struct Scene {

@@ -3,6 +3,8 @@
 #include "illumination/least_squares.hpp"
 #include "materials/radiance_luminance.hpp"
 
+#include <gsl/gsl_integration.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -93,6 +95,36 @@ double glass_transmittance(const GlassOptics& glass, double mu) {
     total += kRadianceLuminanceWeights[c] * t;
   }
   return total;
+}
+
+double glass_reflectance(const GlassOptics& glass, double mu) {
+  mu = std::clamp(mu, 0.0, 1.0);
+  if (mu == 0) return 1;  // grazing: r_s = r_p = 1
+  const double n = glass.refractive_index;
+  const double cos_t = std::sqrt((1 - 1 / (n * n)) + mu * mu / (n * n));
+  const double rs = std::pow((mu - n * cos_t) / (mu + n * cos_t), 2);
+  const double rp = std::pow((1 / mu - n / cos_t) / (1 / mu + n / cos_t), 2);
+  double total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double d2 = std::pow(glass.transmissivity[c], 2 / cos_t);
+    const double r = 0.5 * rs * (1 + (1 - 2 * rs) * d2) / (1 - rs * rs * d2) +
+                     0.5 * rp * (1 + (1 - 2 * rp) * d2) / (1 - rp * rp * d2);
+    total += kRadianceLuminanceWeights[c] * r;
+  }
+  return total;
+}
+
+double glass_diffuse_reflectance(const GlassOptics& glass) {
+  constexpr std::size_t kPoints = 64;
+  gsl_integration_glfixed_table* table = gsl_integration_glfixed_table_alloc(kPoints);
+  double sum = 0;
+  for (std::size_t i = 0; i < kPoints; ++i) {
+    double mu = 0, weight = 0;
+    gsl_integration_glfixed_point(0, 1, i, &mu, &weight, table);
+    sum += weight * 2 * mu * glass_reflectance(glass, mu);
+  }
+  gsl_integration_glfixed_table_free(table);
+  return sum;
 }
 
 TransmittancePolynomial fit_glass_transmittance(const GlassOptics& glass, double tolerance) {

@@ -22,6 +22,20 @@ struct GlassOptics {
 // T = ½ Σ_{r ∈ {r_s, r_p}} (1 − r)² d / (1 − r² d²), multiple reflections inside the pane included.
 double glass_transmittance(const GlassOptics& glass, double cos_incidence);
 
+// Luminance-weighted reflectance at cosine of incidence μ, the same on both sides of the pane:
+// m_glass's reflected ray, R = ½ Σ_{r ∈ {r_s, r_p}} r (1 + (1 − 2r) d²)/(1 − r² d²) (the first
+// surface's r plus what returns through it after one or more passes: r + (1 − r)² r d²/(1 − r² d²)).
+// Without absorption (t = 1, so d = 1) R + T = 1 exactly: what the pane does not transmit it reflects.
+double glass_reflectance(const GlassOptics& glass, double cos_incidence);
+
+// The pane's reflectance for diffuse light (a uniform radiance from one side), 2 ∫₀¹ R(μ) μ dμ:
+// what a radiosity solution, which carries Lambertian exitance only, takes as the glass's
+// reflectance (its specular direction is not kept, as with plastic's specular part; the energy is
+// exact for diffuse incidence). R(μ) is smooth on [0, 1] (the Fresnel terms are rational in μ and
+// cos θ_t, d = t^{1/cos θ_t} with cos θ_t ≥ √(1 − 1/n²)), so 64-point Gauss–Legendre (GSL) gives
+// it to roundoff. Clear glass (t = 0.96, n = 1.52): R(1) = 0.0786, diffuse 0.1478.
+double glass_diffuse_reflectance(const GlassOptics& glass);
+
 // The transmissivity t (the same in every channel) whose glass of refractive index n transmits
 // `transmittance` at normal incidence: glass_transmittance({t, t, t}, n, 1) = transmittance, found
 // by bisection on t ∈ [0, 1], where T rises monotonically (to the last bit: 64 halvings, the result

@@ -150,7 +150,7 @@ class ObjAssembler {
       } else {
         open_.add(f, r ? r->where.str() : std::string());
       }
-      define(name, [&] { return Material{name, "trans", {}, {1, 1, 1, 0, 0, t, 1}, where}; });
+      define(name, [&] { return Material{name, "trans", {}, {t, t, t, 0, 0, 1, 1}, where}; });
     } else {  // glass
       define(name, [&] {
         const double n = r->refractive_index.value_or(1.52);

@@ -8,8 +8,10 @@
 //   opaque    plastic (r g b 0 0): the rule's reflectance as grey, else the .mtl's Kd as written
 //             (so ρ = 0.265 r + 0.670 g + 0.065 b, Radiance's luminance weights, exactly as for a
 //             .rad plastic of that colour), else 0.5 (below).
-//   aperture  trans (1 1 1 0 0 T 1) among the apertures: a sky opening of constant transmittance T
-//             (Radiance's trans passes (1 − spec)·T·grey(1 1 1) = T, all of it specular).
+//   aperture  trans (T T T 0 0 1 1) among the apertures: a sky opening of constant transmittance T
+//             (Radiance's trans passes (1 − spec)·trans·grey(T T T) = T, all of it specular, and
+//             reflects (1 − spec)(1 − trans)·grey + spec = 0: an opening, not a diffusing sheet,
+//             which trans 1 1 1 0 0 T 1 would be, sending 1 − T back).
 //   glass     glass (t t t [n]): Radiance's angular model; t = the rule's transmissivity, or the t
 //             whose normal-incidence transmittance is the rule's (else the .mtl's) transmittance.
 //   ignore    no polygon.

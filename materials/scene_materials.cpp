@@ -56,7 +56,11 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
   };
   Tally void_in_scene, opaque_in_apertures, sources, interior_glass, interior_copies;
   std::vector<const Polygon*> interior_panes;
-  std::map<std::string, std::pair<double, TransmittancePolynomial>> glass_fits;  // by material name
+  struct GlassFit {
+    double transmittance = 0, reflectance = 0;  // at normal incidence; for diffuse light
+    TransmittancePolynomial fit;
+  };
+  std::map<std::string, GlassFit> glass_fits;  // by material name
   for (const auto& entry : content.polygons) {
     const Polygon& poly = entry.polygon;
     const auto it = content.materials.find(poly.material);
@@ -80,17 +84,21 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       auto fitted = glass_fits.find(material->name);
       if (fitted == glass_fits.end()) {
         const GlassOptics optics = glass_optics(*material);
-        fitted = glass_fits.emplace(material->name, std::make_pair(glass_transmittance(optics, 1.0),
-                                                                   fit_glass_transmittance(optics))).first;
+        fitted = glass_fits
+                     .emplace(material->name, GlassFit{glass_transmittance(optics, 1.0),
+                                                       glass_diffuse_reflectance(optics), fit_glass_transmittance(optics)})
+                     .first;
       }
-      const auto& [t, fit] = fitted->second;
-      char text[256];
+      const GlassFit& g = fitted->second;
+      char text[512];
       std::snprintf(text, sizeof text,
                     "': transmittance %.4f at normal incidence, falling with the angle of incidence as Radiance's "
-                    "glass model, fitted by a degree-%zu polynomial in cos θ (max error %.1e)",
-                    t, fit.coefficients.size() - 1, fit.max_error);
+                    "glass model, fitted by a degree-%zu polynomial in cos θ (max error %.1e); it reflects %.4f of "
+                    "diffuse light (%.4f at normal incidence), which the reflected components send back diffusely",
+                    g.transmittance, g.fit.coefficients.size() - 1, g.fit.max_error, g.reflectance,
+                    glass_reflectance(glass_optics(*material), 1.0));
       describe_once(*material, "glass '" + material->name + text);
-      scene.apertures.push_back({poly, t, fit.coefficients, fit.max_error});
+      scene.apertures.push_back({poly, g.transmittance, g.fit.coefficients, g.fit.max_error, g.reflectance});
     } else if (type == "BSDF" || type == "aBSDF") {
       const std::string data = material->strings.size() > 1 ? " (data " + printable(material->strings[1]) + ")" : "";
       if (!entry.from_aperture_file) {
@@ -115,7 +123,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       // foliage shade, Honeybee's air boundary, trans 1 1 1 0 0 1 1) it is a pane of the total
       // transmittance: what lies beyond is seen through it, attenuated, and light through several
       // panes counts once (AperturesAre::panes). Its diffuse part is treated as clear, the stated
-      // approximation; its reflection is left out, as glass's is.
+      // approximation. What it reflects, (1 − spec)(1 − trans)·grey diffusely and spec specularly,
+      // the reflected components send back diffusely (as plastic's specular part).
       const auto& a = material->reals;
       const double grey = radiance_luminance(a[0], a[1], a[2]);
       const double t = (1 - a[3]) * a[5] * grey, reflected = (1 - a[3]) * (1 - a[5]) * grey + a[3];
@@ -124,8 +133,10 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       describe_once(*material, (entry.from_aperture_file ? "" : material->where.str() + ": ") + "trans " +
                                    printable(material->name) + ": a pane of transmittance " + format_fraction(t) +
                                    (a[6] < 1 ? ", its diffuse part (" + format_fraction(t * (1 - a[6])) + ") treated as clear" : std::string()) +
-                                   (reflected > 0 ? "; its reflectance " + format_fraction(reflected) + " is not used" : std::string()));
-      scene.apertures.push_back({poly, t});
+                                   (reflected > 0 ? "; it reflects " + format_fraction(reflected) +
+                                                        ", which the reflected components send back diffusely"
+                                                  : std::string()));
+      scene.apertures.push_back({poly, t, {}, 0, reflected});
     } else if (entry.from_aperture_file) {
       if (type == "void") {
         scene.apertures.push_back({poly, 1.0});

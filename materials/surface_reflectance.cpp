@@ -75,6 +75,21 @@ SceneReflectances scene_reflectances(const Scene& scene) {
     out.reflectance.push_back(r.reflectance);
     out.materials.emplace(m ? m->name : p.material.empty() ? "void" : p.material, r);
   }
+  // The panes that reflect (glass, trans: scene_materials.cpp set their reflectance), once per material.
+  for (const Aperture& a : scene.apertures) {
+    if (!(a.reflectance > 0) || out.materials.count(a.polygon.material)) continue;
+    const auto it = scene.materials.find(a.polygon.material);
+    const std::string type = it == scene.materials.end() ? "pane" : it->second.type;
+    SurfaceReflectance r;
+    r.reflectance = a.reflectance;
+    r.description = type == "glass"
+                        ? "glass: a pane reflecting 2∫R(μ)μ dμ of Radiance's glass model, both sides, diffusely "
+                          "(Radiance reflects it specularly, R from about 0.08 at normal incidence to 1 at grazing: "
+                          "the energy for diffuse light is kept, its direction is not); it transmits as for the sky"
+                        : type + ": a pane reflecting (1 - spec)(1 - trans) grey + spec, both sides, diffusely "
+                                 "(its specular part too, as plastic's); it transmits as for the sky";
+    out.materials.emplace(a.polygon.material, r);
+  }
   return out;
 }
 

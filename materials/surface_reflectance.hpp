@@ -10,7 +10,9 @@
 //   metal    R G B spec rough: diffuse (1 − spec)·grey, specular spec·grey (coloured): ρ = grey,
 //            reflected diffusely as plastic's specular part is.
 //   trans    is not an opaque surface: wherever it is filed it is a pane of transmittance
-//            (1 − spec)·τ·grey (materials/scene_materials.cpp), so it never reaches this function.
+//            (1 − spec)·τ·grey (materials/scene_materials.cpp), so it never reaches this function;
+//            its reflectance (1 − spec)(1 − τ)·grey + spec is the pane's (Aperture::reflectance),
+//            as is glass's diffuse reflectance; scene_reflectances lists both.
 //   void     (the null modifier) and glow/light (emitters: the sky comes from --sky): black.
 //   mirror   specular only: not representable; an error when reflections are computed.
 //
@@ -39,7 +41,8 @@ struct SurfaceReflectance {
 SurfaceReflectance surface_reflectance(const Material* material);
 
 // Every occluder's reflectance (Scene::occluders order) from its material, and what was used,
-// by material name ("void" for polygons without one): the reflected components' input.
+// by material name ("void" for polygons without one), the reflecting panes' materials included:
+// the reflected components' input.
 struct SceneReflectances {
   std::vector<double> reflectance;
   std::map<std::string, SurfaceReflectance> materials;

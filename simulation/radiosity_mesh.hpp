@@ -43,7 +43,7 @@ struct RadiosityElement {
 
 // A reflecting polygon of the scene: a luminaire and an occluder at once.
 struct RadiositySurface {
-  std::size_t occluder = 0;  // index into Scene::occluders
+  std::size_t occluder = 0;  // index into the polygons meshed (reflected_components: Scene::occluders, then the panes)
   double reflectance = 0;    // in (0, 1)
   Vec3 normal;               // unit Newell normal
   Vec3 point;                // a vertex: the plane is normal·(y − point) = 0

@@ -129,7 +129,16 @@ class Transport {
     for (const Aperture& a : scene.apertures)
       for (const Vec3& v : a.polygon.vertices) all.add(v);
     scale_ = all.empty() ? 1 : std::max(all.longest_side(), 1e-300);
-    mesh_ = mesh_surfaces(scene.occluders, reflectance, [&](const RadiosityElement& e) { return max_edge(e); });
+    // The reflecting surfaces: the opaque polygons, then every aperture's pane at index
+    // (occluders + aperture), as the luminaire engines and the sky box list them as occluders, so
+    // that one index names a surface's polygon in each. Panes of reflectance 0 are not meshed.
+    polygons_ = scene.occluders;
+    std::vector<double> reflect = reflectance;
+    for (const Aperture& a : scene.apertures) {
+      polygons_.push_back(a.polygon);
+      reflect.push_back(a.reflectance);
+    }
+    mesh_ = mesh_surfaces(polygons_, reflect, [&](const RadiosityElement& e) { return max_edge(e); });
     if (every_side)
       live_.assign(mesh_.surfaces.size(), {true, true});
     else
@@ -166,8 +175,9 @@ class Transport {
   struct ThroughApertures {
     double sky = 0, ground = 0;
   };
-  // `own`: the occluder the receiver lies on (kNoOccluder for a sensor), which must not hide
-  // what the receiver sees.
+  // `own`: the occluder the receiver lies on (kNoOccluder for a sensor; occluders + a for a node
+  // on aperture a's pane, which sees nothing through that aperture), which must not hide what
+  // the receiver sees.
   ThroughApertures through_apertures(const Vec3& x, const Vec3& n, std::size_t own, bool with_sky,
                                      VisibilityCounters& c) const {
     ThroughApertures out;
@@ -199,6 +209,7 @@ class Transport {
       }
     };
     for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
+      if (own == scene_.occluders.size() + a) continue;  // a node on this pane: it is in the pane's plane
       // As in direct(): nothing of the aperture visible at all, nothing above the horizon.
       const ApertureView all = engine_.aperture_view(x, n, a, c, full);
       if (all.empty()) continue;
@@ -268,6 +279,7 @@ class Transport {
       out.push_back(std::move(v));
     };
     for (std::size_t a = 0; a < engine_.aperture_count(); ++a) {
+      if (own == scene_.occluders.size() + a) continue;  // a node on this pane (through_apertures)
       ApertureView all = engine_.aperture_view(x, n, a, c, full);
       if (all.empty()) continue;
       ApertureView above = above_horizon_view(engine_, x, n, a, c, half);
@@ -323,7 +335,8 @@ class Transport {
     opt.clip_to_horizon = false;
     opt.occluders_beyond = false;
     const std::vector<RadiositySurface>& surfaces = meshes[0]->surfaces;
-    if (own_surface < surfaces.size()) opt.receiver_occluder = surfaces[own_surface].occluder;
+    const std::size_t receiver = own_surface < surfaces.size() ? surfaces[own_surface].occluder : VisibilityOptions::kNoOccluder;
+    opt.receiver_occluder = receiver;
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
       if (s == own_surface || (only != nullptr && !(*only)[s])) continue;
       const RadiositySurface& surf = surfaces[s];
@@ -332,7 +345,7 @@ class Transport {
       if (std::abs(facing) <= kSideMargin * scale_) continue;
       const int side = facing > 0 ? 0 : 1;
       if (!live_[s][std::size_t(side)]) continue;  // never so for a receiver that is live itself
-      const Polygon& poly = scene_.occluders[surf.occluder];
+      const Polygon& poly = polygons_[surf.occluder];
       bool in_front = false;
       for (const Vec3& v : poly.vertices) in_front |= dot(n, v - x) > 0;
       if (!in_front) continue;
@@ -368,7 +381,10 @@ class Transport {
         for (std::size_t a : groups_[g].apertures) may_cross |= reach.meets(aperture_boxes_[a], 1e-9 * scale_);
         if (!may_cross) continue;
         const std::uint64_t clipped_t = counters.pairs_clipped;
-        const SphericalRegion through = through_[g].visible_region(x, n, s, counters, opt);
+        VisibilityOptions through_opt = opt;  // the panes' indices as this engine lists them
+        through_opt.excluded_occluder = through_occluder(g, surf.occluder);
+        through_opt.receiver_occluder = through_occluder(g, receiver);
+        const SphericalRegion through = through_[g].visible_region(x, n, s, counters, through_opt);
         if (through.empty()) continue;
         const bool through_free = counters.pairs_clipped == clipped_t;
         // Both seen whole: the same region, nothing seen through the group.
@@ -422,7 +438,7 @@ class Transport {
 
   void remesh_boxes() {
     surf_boxes_.clear();
-    for (const auto& s : mesh_.surfaces) surf_boxes_.push_back(box_of(scene_.occluders[s.occluder].vertices));
+    for (const auto& s : mesh_.surfaces) surf_boxes_.push_back(box_of(polygons_[s.occluder].vertices));
   }
 
  private:
@@ -444,7 +460,7 @@ class Transport {
                                 std::array<bool, 2>& seen) {
       if (t == own) return;
       const RadiositySurface& surf = mesh_.surfaces[t];
-      const Polygon& poly = scene_.occluders[surf.occluder];
+      const Polygon& poly = polygons_[surf.occluder];
       bool in_front = false;
       for (const Vec3& v : poly.vertices)
         for (const Vec3& x : xs) in_front |= dot(n, v - x) > -margin;
@@ -491,7 +507,7 @@ class Transport {
       todo.pop_back();
       const RadiositySurface& surf = mesh_.surfaces[s];
       const Vec3 n = side == 0 ? surf.normal : -1.0 * surf.normal;
-      const std::vector<Vec3>& xs = scene_.occluders[surf.occluder].vertices;
+      const std::vector<Vec3>& xs = polygons_[surf.occluder].vertices;
       for (std::size_t t = 0; t < ns; ++t) {
         std::array<bool, 2> seen{false, false};
         sides_seen(t, xs, n, s, seen);
@@ -503,8 +519,10 @@ class Transport {
   // Whether surface t lies in surface s's plane, facing the other way, over s's area centroid.
   bool covers_back(std::size_t t, std::size_t s, double margin) const {
     const RadiositySurface &a = mesh_.surfaces[s], &b = mesh_.surfaces[t];
+    // A pane is no wall face: a window in its wall's plane covers the wall's hole, not its back.
+    if (a.occluder >= scene_.occluders.size() || b.occluder >= scene_.occluders.size()) return false;
     if (!(dot(a.normal, b.normal) < -1 + 1e-12)) return false;
-    const Polygon& pb = scene_.occluders[b.occluder];
+    const Polygon& pb = polygons_[b.occluder];
     for (const Vec3& v : pb.vertices)
       if (std::abs(dot(a.normal, v - a.point)) > margin) return false;
     // The centroid of s's elements (area-weighted), tested against t's polygon by crossings in
@@ -539,19 +557,30 @@ class Transport {
   // (VisibilityOptions::occluders_beyond), so one engine serves every surface and both sides.
   void build_luminaire_engines() {
     Scene base;
-    for (const RadiositySurface& s : mesh_.surfaces) base.apertures.push_back({scene_.occluders[s.occluder], 1.0});
+    for (const RadiositySurface& s : mesh_.surfaces) base.apertures.push_back({polygons_[s.occluder], 1.0});
     base.occluders = scene_.occluders;
     Scene inside = base;
     for (const Aperture& a : scene_.apertures) inside.occluders.push_back(a.polygon);
     inside_ = std::make_unique<VisibilityEngine>(inside, options_.mode, engine_.order(), AperturesAre::independent);
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       Scene t = base;
+      std::vector<std::size_t>& index = through_index_.emplace_back(scene_.apertures.size(), VisibilityOptions::kNoOccluder);
       for (std::size_t h = 0; h < groups_.size(); ++h)
         if (h != g)
-          for (std::size_t a : groups_[h].apertures) t.occluders.push_back(scene_.apertures[a].polygon);
+          for (std::size_t a : groups_[h].apertures) {
+            index[a] = t.occluders.size();
+            t.occluders.push_back(scene_.apertures[a].polygon);
+          }
       through_.emplace_back(t, options_.mode, engine_.order(), AperturesAre::independent);
     }
     remesh_boxes();
+  }
+
+  // Occluder `i` of `inside_` and the sky box (a pane: occluders + aperture) as through_[g] lists
+  // it: the opaque polygons keep their index, a pane has another or is none (its group's).
+  std::size_t through_occluder(std::size_t g, std::size_t i) const {
+    const std::size_t n = scene_.occluders.size();
+    return i < n || i == VisibilityOptions::kNoOccluder ? i : through_index_[g][i - n];
   }
 
   void build_sky_box(const Box& all) {
@@ -586,6 +615,8 @@ class Transport {
   RadiosityMesh mesh_;
   std::unique_ptr<VisibilityEngine> inside_;
   std::vector<VisibilityEngine> through_;  // per aperture group
+  std::vector<std::vector<std::size_t>> through_index_;  // per group and aperture: its occluder index there
+  std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;
   std::vector<std::array<bool, 2>> live_;  // per surface and side
   double coarsening_ = 1;
@@ -716,12 +747,13 @@ double check_inputs(const Scene& scene, const std::vector<double>& reflectance, 
     throw Error("ground reflectance " + std::to_string(options.ground_reflectance) + " is outside [0, 1)");
   if (reflectance.size() != scene.occluders.size()) throw Error("one reflectance per occluder is needed");
   double rho_max = 0;
-  for (std::size_t i = 0; i < reflectance.size(); ++i) {
-    if (!(reflectance[i] >= 0 && reflectance[i] < 1))
-      throw input_error(scene.occluders[i].where, "reflectance " + std::to_string(reflectance[i]) + " of '" +
-                                                      scene.occluders[i].name + "' is outside [0, 1)");
-    rho_max = std::max(rho_max, reflectance[i]);
-  }
+  const auto check = [&](double rho, const Polygon& p) {
+    if (!(rho >= 0 && rho < 1))
+      throw input_error(p.where, "reflectance " + std::to_string(rho) + " of '" + p.name + "' is outside [0, 1)");
+    rho_max = std::max(rho_max, rho);
+  };
+  for (std::size_t i = 0; i < reflectance.size(); ++i) check(reflectance[i], scene.occluders[i]);
+  for (const Aperture& a : scene.apertures) check(a.reflectance, a.polygon);  // a pane's (Aperture::reflectance)
   return rho_max;
 }
 

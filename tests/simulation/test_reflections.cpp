@@ -383,6 +383,70 @@ TEST_CASE("closed box, light on the floor only: the mean indirect irradiance is 
   }
 }
 
+TEST_CASE("closed box whose ceiling is a reflecting pane: the pane is a surface of the enclosure (CIE 171 identity with its area); a pane that does not reflect is an opening") {
+  // Glass and trans panes reflect (Aperture::reflectance, diffusely; materials/scene_materials.cpp).
+  // With the ceiling a pane of the walls' reflectance ρ the enclosure is closed for the reflected
+  // light, so the identity of the closed box above holds over all six faces, the pane's inner side
+  // included. With a pane of reflectance 0 what reaches it leaves: each wall node's row then sums
+  // to 1 minus its configuration factor to the ceiling, which Howell's formula gives at the
+  // floor's centre node closest to the middle.
+  Scene scene = box_scene(4, 5, 3, false);
+  const Polygon ceiling = scene.occluders[1];
+  scene.occluders.erase(scene.occluders.begin() + 1);
+  const double rho = 0.6;
+  scene.apertures.push_back({ceiling, 0.5, {}, 0, rho});
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  ReflectionOptions o;
+  o.element_size = 1.0;
+  const RadiositySystem sys = radiosity_system(scene, std::vector<double>(5, rho), engine, {}, o);
+  const Vec3 centre{2, 2.5, 1.5};
+  const auto inner = [&](std::size_t u) { return dot(side_normal(sys, u), centre - node_of(sys, u)) > 0; };
+  std::vector<double> source(sys.rows.size(), 0.0);
+  double flux = 0, area = 0, pane_area = 0;
+  for (std::size_t u = 0; u < sys.rows.size(); ++u) {
+    if (!inner(u)) continue;
+    area += weight_of(sys, u);
+    const Vec3 p = node_of(sys, u);
+    if (std::abs(p.z - 3) < 1e-12) pane_area += weight_of(sys, u);
+    const double direct = std::abs(p.z) < 1e-12 ? 1 + p.x * p.y : 0;  // on the floor
+    flux += weight_of(sys, u) * direct;
+    source[u] = rho * direct;
+  }
+  REQUIRE(pane_area == Approx(20).epsilon(1e-12));  // the pane is meshed: its inner side has nodes
+  REQUIRE(area == Approx(2 * (4 * 5 + 4 * 3 + 5 * 3)).epsilon(1e-12));
+  const RadiositySolution sol = solve_radiosity(sys.rows, sys.reflectance, source);
+  double indirect = 0;
+  for (std::size_t u = 0; u < sys.rows.size(); ++u)
+    if (inner(u)) {
+      double e = 0;
+      for (const auto& [j, k] : sys.rows[u]) e += k * sol.exitance[j];
+      indirect += weight_of(sys, u) * e;
+    }
+  CHECK(indirect / area == Approx(rho * flux / (area * (1 - rho))).epsilon(1e-9));
+
+  // The pane black: not meshed, an opening. The floor node nearest the centre sees the ceiling
+  // with Howell's parallel factor (four rectangles), the rest of its row is the walls.
+  scene.apertures.back().reflectance = 0;
+  ReflectionOptions collocated = o;
+  collocated.reciprocal_transport = false;
+  const RadiositySystem open = radiosity_system(scene, std::vector<double>(5, rho), engine, {}, collocated);
+  std::size_t best = 0;
+  double best_d = 1e300;
+  for (std::size_t u = 0; u < open.rows.size(); ++u) {
+    const Vec3 p = node_of(open, u);
+    if (std::abs(p.z) > 1e-12 || side_normal(open, u).z < 0.5) continue;
+    const double d = norm(p - Vec3{2, 2.5, 0});
+    if (d < best_d) best_d = d, best = u;
+  }
+  const Vec3 p = node_of(open, best);
+  const double to_ceiling = howell_parallel(4 - p.x, 5 - p.y, 3) + howell_parallel(p.x, 5 - p.y, 3) +
+                            howell_parallel(4 - p.x, p.y, 3) + howell_parallel(p.x, p.y, 3);
+  double row_sum = 0;
+  for (const auto& [j, k] : open.rows[best]) row_sum += k;
+  CHECK(row_sum == Approx(1 - to_ceiling).epsilon(1e-10));
+  for (std::size_t u = 0; u < open.rows.size(); ++u) CHECK(std::abs(node_of(open, u).z - 3) > 1e-12);  // no pane nodes
+}
+
 TEST_CASE("parallel plates: the irradiance grows towards M/(1 - rho1 rho2) as the plates widen") {
   // Plate 1 (z = 0, facing up) emits M0 = 1; plate 2 (z = 1, facing down). For infinite plates
   // M1 = 1 + rho1 M2, M2 = rho2 M1, so the irradiance on plate 2 is M1 = 1/(1 - rho1 rho2). For

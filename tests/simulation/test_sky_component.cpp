@@ -190,3 +190,45 @@ TEST_CASE("glazing: Radiance's angle-dependent glass integrated as moments about
     CHECK(value < 0.8815 * unglazed);  // oblique light loses more than at normal incidence
   }
 }
+
+TEST_CASE("glass reflects what it does not transmit or absorb: Radiance's R(μ), and its value for diffuse light") {
+  // Without absorption (transmissivity 1 in every channel) the pane's two Fresnel surfaces and the
+  // light bouncing between them only split the light: R + T = 1 at every angle, to roundoff.
+  for (const double n : {1.52, 1.4, 2.0}) {
+    const GlassOptics lossless{{1.0, 1.0, 1.0}, n};
+    for (int i = 0; i <= 100; ++i) {
+      const double mu = i / 100.0;
+      CHECK(std::abs(glass_reflectance(lossless, mu) + glass_transmittance(lossless, mu) - 1) < 1e-15);
+    }
+  }
+  // At normal incidence r_s = r_p = r0 = ((n − 1)/(n + 1))², and the pane returns
+  // r0 + (1 − r0)² r0 t²/(1 − r0² t²) (the geometric series of passes), written here that way.
+  const GlassOptics clear{{0.96, 0.96, 0.96}, 1.52};
+  const double r0 = std::pow(0.52 / 2.52, 2), t2 = 0.96 * 0.96;
+  CHECK(glass_reflectance(clear, 1.0) == Approx(r0 + (1 - r0) * (1 - r0) * r0 * t2 / (1 - r0 * r0 * t2)).epsilon(1e-15));
+  CHECK(glass_reflectance(clear, 0.0) == 1.0);  // grazing: everything is reflected
+  // With absorption the pane keeps some: R + T < 1, the more so the more it absorbs.
+  const GlassOptics tinted{{0.5, 0.6, 0.7}, 1.52};
+  for (const double mu : {0.05, 0.3, 0.7, 1.0})
+    CHECK(glass_reflectance(tinted, mu) + glass_transmittance(tinted, mu) < glass_reflectance(clear, mu) + glass_transmittance(clear, mu));
+  // The diffuse reflectance 2 ∫ R μ dμ against composite Simpson on 2^16 intervals in long double
+  // (an independent rule; R is smooth on [0, 1], so Simpson's h⁴ error is ~1e-19 here). 1e-13:
+  // the two rules' sums of 64 and 65,537 terms each round to a few ulps of 0.15.
+  for (const GlassOptics& g : {clear, tinted, GlassOptics{{0.9, 0.9, 0.9}, 1.4}}) {
+    const int m = 1 << 16;
+    long double simpson = 0;
+    for (int i = 0; i <= m; ++i) {
+      const long double mu = static_cast<long double>(i) / m;
+      const long double w = (i == 0 || i == m) ? 1 : (i % 2 ? 4 : 2);
+      simpson += w * 2 * mu * glass_reflectance(g, double(mu));
+    }
+    simpson /= 3.0L * m;
+    CHECK(std::abs(glass_diffuse_reflectance(g) - double(simpson)) < 1e-13);
+  }
+  // Clear glass (88 % at normal incidence) reflects about 8 % of normal light and, since R rises
+  // to 1 at grazing incidence, nearly twice that of diffuse light.
+  CHECK(std::abs(glass_reflectance(clear, 1.0) - 0.08) < 0.002);
+  INFO("diffuse reflectance of clear glass " << glass_diffuse_reflectance(clear));
+  CHECK(glass_diffuse_reflectance(clear) > 1.5 * glass_reflectance(clear, 1.0));
+  CHECK(glass_diffuse_reflectance(clear) < 2.0 * glass_reflectance(clear, 1.0));
+}
