@@ -879,9 +879,20 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
 // is added (the transmittance taken at the centroid's direction costs at most that). Elements
 // not split this round add what earlier rounds estimated for them (`carried`, per sensor).
 struct SensorTerms {
-  // The split elements' terms |P − its children|, (P, term), largest first, at most kTermsKept:
-  // the candidates for the next local refinement. `total`: all of them summed.
-  std::vector<std::pair<std::uint32_t, double>> largest;
+  // A split element P's part of the estimate: |P − its children| and, through glass, its
+  // children's spread of T(μ) times what they give.
+  struct Term {
+    std::uint32_t element = 0;
+    double difference = 0, spread = 0;
+    // What splitting P again is expected to take off the estimate: three quarters of the
+    // difference (second order: a quarter is left) and half of the spread (first order in the
+    // angle the element subtends: each child spans half of it).
+    double reduction() const { return 0.75 * difference + 0.5 * spread; }
+  };
+  // The split elements' terms, largest reduction first, at most kTermsKept: the candidates for the
+  // next local refinement. `total`: the differences of all split elements summed; `spread`: the
+  // spread of every element this round (split or not).
+  std::vector<Term> largest;
   double total = 0, spread = 0;
 };
 constexpr std::size_t kTermsKept = 256;
@@ -894,6 +905,7 @@ struct SensorValues {
 struct SensorLocal {
   VisibilityCounters counters;
   std::vector<double> through, inside;  // per coarse element: coarse minus fine
+  std::vector<double> spread;           // per split coarse element: its children's spread
 };
 
 // What a sensor's transport was on the finer mesh of a round, for the next local round: an
@@ -955,6 +967,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       const Sensor& s = grid->sensors[i];
       local.through.assign(nc, 0.0);
       local.inside.assign(nc, 0.0);
+      local.spread.assign(nc, 0.0);
       double e_through = 0, e_inside = 0, e_spread = 0;
       std::vector<SensorEntry> next;
       const auto coarse_sink = [&](std::size_t e, int side, const std::array<double, 3>& c, bool through) {
@@ -967,7 +980,10 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
         double value = 0;
         for (int k = 0; k < 3; ++k) value += c[k] * fine[unknown(e, side, k)];
         (through ? e_through : e_inside) += value;
-        if (split[parent[e]]) (through ? local.through : local.inside)[parent[e]] -= value;
+        if (split[parent[e]]) {
+          (through ? local.through : local.inside)[parent[e]] -= value;
+          local.spread[parent[e]] += sp * std::abs(value);
+        }
         e_spread += sp * std::abs(value);
         if (keep) next.push_back({std::uint32_t(e), std::uint8_t(side), through, sp, c});
       };
@@ -1009,14 +1025,16 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
         cache->entries[g][i] = std::move(next);
       }
       SensorTerms& mine = terms[i];
-      std::vector<std::pair<std::uint32_t, double>>& largest = mine.largest;
+      std::vector<SensorTerms::Term>& largest = mine.largest;
       for (std::size_t p = 0; p < nc; ++p) {
         const double term = std::abs(local.through[p]) + std::abs(local.inside[p]);
-        if (term == 0) continue;
+        if (term == 0 && local.spread[p] == 0) continue;
         mine.total += term;
-        largest.emplace_back(std::uint32_t(p), term);
+        largest.push_back({std::uint32_t(p), term, local.spread[p]});
       }
-      const auto larger = [](const auto& x, const auto& y) { return x.second > y.second || (x.second == y.second && x.first < y.first); };
+      const auto larger = [](const SensorTerms::Term& x, const SensorTerms::Term& y) {
+        return x.reduction() > y.reduction() || (x.reduction() == y.reduction() && x.element < y.element);
+      };
       const std::size_t kept = std::min(largest.size(), kTermsKept);
       std::partial_sort(largest.begin(), largest.begin() + std::ptrdiff_t(kept), largest.end(), larger);
       largest.resize(kept);
@@ -1044,11 +1062,14 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
 }
 
 // The next local refinement (DESIGN.md §4): every sensor whose estimate exceeds `tolerance` flags
-// its largest terms, largest first, until what is left of them (R), with its carried estimate, its
-// glass spread and a quarter of the flagged ones (F/4: what their split leaves at second order;
-// measured, the split elements' children's terms summed over all sensors against the split
-// terms: 0.26 and 0.27 on the room sample's second and third rounds, 0.18 on the office's
-// second), meets the tolerance; the flags of all sensors together are split. Each sensor then
+// its terms, largest expected reduction first, until its estimate less the reductions of the
+// flagged ones meets the tolerance: a split leaves a quarter of an element's difference (second
+// order; measured, the split elements' children's terms summed over all sensors against the
+// split terms: 0.26 and 0.27 on the room sample's second and third rounds, 0.18 on the office's
+// second) and half of its glass spread (first order in the element's angle). Counting the spread
+// as irreducible instead made the sensors near the office's window, where the spread is most of
+// the estimate, flag nearly all their candidates (616 elements split against 164 once the pane
+// reflected and the spread grew 8 %). The flags of all sensors together are split. Each sensor then
 // carries, besides what it carried, the terms of the elements not split, as they were: an
 // element's estimate stays until it is refined. A term of an element split for another sensor but not among a sensor's kept
 // candidates is carried too, so the carried part may count it twice, never too little. Returns
@@ -1062,21 +1083,19 @@ std::vector<bool> local_refinement(const SensorValues& values, double tolerance,
     for (std::size_t i = 0; i < values.terms[g].size(); ++i) {
       if (!(values.estimate[g][i] > tolerance)) continue;
       const SensorTerms& terms = values.terms[g][i];
-      const double target = tolerance - carried[g][i] - terms.spread;
-      double rest = terms.total, flagged = 0;
-      for (const auto& [p, term] : terms.largest) {
-        if (rest + flagged / 4 <= target) break;
-        flag[p] = true;
-        rest -= term;
-        flagged += term;
+      double expected = values.estimate[g][i];
+      for (const SensorTerms::Term& term : terms.largest) {
+        if (expected <= tolerance) break;
+        flag[term.element] = true;
+        expected -= term.reduction();
       }
     }
   for (std::size_t g = 0; g < values.terms.size(); ++g)
     for (std::size_t i = 0; i < values.terms[g].size(); ++i) {
       const SensorTerms& terms = values.terms[g][i];
       double rest = terms.total;
-      for (const auto& [p, term] : terms.largest)
-        if (flag[p]) rest -= term;
+      for (const SensorTerms::Term& term : terms.largest)
+        if (flag[term.element]) rest -= term.difference;
       carried[g][i] += std::max(rest, 0.0);  // rounding of the subtractions: not below 0
     }
   std::vector<bool> split(parent.size());
