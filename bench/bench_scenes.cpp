@@ -26,6 +26,9 @@
 // glazed and unglazed: CPU time per sensor–aperture pair, and how many pairs were decided without
 // clipping because walls hide the window (the largest floor is written out as .rad/.pts so that
 // another build, today's main for one, can be timed on it with `daylit df --threads 1`).
+// MPI (issue 13, part 4): this executable's `df` on the office with the most boxes, one thread per
+// process, alone and under `mpirun -n 1` and `-n 2`, with whether the CSVs are byte for byte the
+// same (a DAYLIT_MPI build with mpirun on the PATH; otherwise the table says why it is empty).
 // Occluders (one core): the office with k boxes in the street (25 … 10,025 polygons) in both
 // subtraction orders (SubtractionOrder), with the exponent of CPU time per sensor and the largest
 // relative difference of front_to_back (the default) from as_built. Threads: random office sensors on 1 and
@@ -35,15 +38,20 @@
 // scenes_pairs.csv (what the visibility routine left out, per grid), scenes_floor.csv,
 // scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts (and scenes_boxes_*: the office with
 // the most boxes of the scaling, on its sensors), scenes_occluders_one_core.csv,
-// scenes_threads.csv.
+// scenes_threads.csv, scenes_mpi.csv.
+
+#include <unistd.h>
 
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -965,6 +973,83 @@ void print_thread_summary(std::ostream& out, const std::vector<ThreadRow>& rows)
   }
 }
 
+// ── MPI ranks: `mpirun -n R daylit df` on the office with boxes ─────────────────────────────
+
+struct MpiRow {
+  int ranks = 0;     // 0: one process without mpirun (the reference)
+  double seconds = 0;  // wall, best of the runs: process start and MPI's launch included
+  bool identical = true;  // the CSV byte for byte the single process's
+};
+
+std::string file_text(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+// This executable's `df` on the office with the most boxes of the scaling (the model written into
+// `dir`) and the sensors of `grid`, one thread per process: alone, then under `mpirun -n 1` and
+// `-n 2` (issue 13, part 4: the speed-up over ranks and that they change nothing). Needs a
+// DAYLIT_MPI build and mpirun on the PATH; otherwise no rows, and `note` says why.
+std::vector<MpiRow> measure_mpi(const std::filesystem::path& dir, const std::filesystem::path& grid, bool mpi_build,
+                                int runs, std::string& note) {
+  if (!mpi_build) {
+    note = "not measured: this daylit is built without DAYLIT_MPI (cmake -DDAYLIT_MPI=ON)";
+    return {};
+  }
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) {
+    note = "not measured: mpirun is not on the PATH";
+    return {};
+  }
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const auto quoted = [](const std::filesystem::path& p) { return "'" + p.string() + "'"; };
+  // OpenMPI refuses root without --allow-run-as-root; two ranks on fewer cores need --oversubscribe.
+  const std::string launch = std::string("mpirun --oversubscribe") + (geteuid() == 0 ? " --allow-run-as-root" : "");
+  const std::filesystem::path reference = dir / "scenes_mpi_ranks_0.csv";
+  std::vector<MpiRow> rows;
+  for (const int ranks : {0, 1, 2}) {
+    const std::filesystem::path csv = dir / fmt::format("scenes_mpi_ranks_{}.csv", ranks);
+    const std::string command =
+        (ranks > 0 ? fmt::format("{} -n {} ", launch, ranks) : std::string()) + quoted(self) + " df --scene " +
+        quoted(dir / "scenes_boxes_scene.rad") + " --apertures " + quoted(dir / "scenes_boxes_apertures.rad") + " --grid " +
+        quoted(grid) + " --threads 1 --quiet --out " + quoted(csv) + " > /dev/null 2>&1";
+    MpiRow row{ranks, std::numeric_limits<double>::infinity(), true};
+    for (int run = 0; run < runs; ++run) {
+      const auto t0 = clock_type::now();
+      if (std::system(command.c_str()) != 0) {
+        note = "failed: " + command;
+        return rows;
+      }
+      row.seconds = std::min(row.seconds, seconds_since(t0));
+    }
+    row.identical = ranks == 0 || file_text(csv) == file_text(reference);
+    if (ranks > 0) std::filesystem::remove(csv);
+    rows.push_back(row);
+  }
+  std::filesystem::remove(reference);
+  note = "the office with the most boxes of the scaling (scenes_boxes_*) on " + grid.string() +
+         ", daylit df --threads 1 per process; the wall times include starting the processes and, under mpirun, MPI";
+  return rows;
+}
+
+void write_mpi_table(const std::string& path, const std::vector<MpiRow>& rows, const std::string& note) {
+  std::ofstream f(path);
+  f << "# " << note << "\n";
+  f << "ranks,wall_s,speed_up_wall,identical_to_one_process\n";
+  for (const MpiRow& r : rows)
+    f << fmt::format("{},{:.4e},{:.3f},{}\n", r.ranks == 0 ? std::string("none") : std::to_string(r.ranks), r.seconds,
+                     rows.front().seconds / r.seconds, r.identical ? "yes" : "no");
+  if (!f) throw Error(path + ": cannot write");
+}
+
+void print_mpi_summary(std::ostream& out, const std::vector<MpiRow>& rows, const std::string& note) {
+  out << "\n## MPI ranks (" << note << ")\n";
+  if (rows.empty()) return;
+  out << "\n| ranks | wall | speed-up (wall) | CSV identical to one process |\n|---|---|---|---|\n";
+  for (const MpiRow& r : rows)
+    out << fmt::format("| {} | {} | {:.2f} | {} |\n", r.ranks == 0 ? std::string("none (no mpirun)") : std::to_string(r.ranks),
+                       seconds_text(r.seconds), rows.front().seconds / r.seconds, r.identical ? "yes" : "no");
+}
+
 void print_floor_summary(std::ostream& out, const std::vector<FloorRow>& rows) {
   out << "\n## The generated office floor (one core; every window from sensors in a few rooms)\n\n";
   out << "| rooms | glazing | occluder polygons | apertures | pairs | CPU per pair | covered | clipped | pieces clipped per pair |\n";
@@ -1034,15 +1119,28 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_loglog_plot(outputs.stage(file("scenes_error_vs_time.png")), error_plot(rows, names, settings));
   write_loglog_plot(outputs.stage(file("scenes_scaling.png")), scaling_plot(scaling, fits));
   outputs.commit();
+  // MPI ranks on the model just written (processes of this executable, under mpirun).
+  std::string mpi_note;
+  // The whole office grid (2,400 sensors), where the ranks have work enough to show; --quick: the
+  // scaling's every 8th sensor.
+  const std::filesystem::path mpi_grid = opt.quick ? dir / "scenes_boxes_grid.pts"
+                                                   : std::filesystem::path(opt.samples) / "office" / "grid.pts";
+  const std::vector<MpiRow> mpi_rows = measure_mpi(dir, mpi_grid, opt.mpi_build, opt.quick ? 1 : 3, mpi_note);
+  {
+    StagedOutputs mpi_output;
+    write_mpi_table(mpi_output.stage(file("scenes_mpi.csv")), mpi_rows, mpi_note);
+    mpi_output.commit();
+  }
   print_summary(std::cout, rows, results, scaling, fits, pairs, settings);  // the results: stdout even with --quiet
   print_floor_summary(std::cout, floor_rows);
   print_order_summary(std::cout, order_rows);
   print_thread_summary(std::cout, thread_rows);
+  print_mpi_summary(std::cout, mpi_rows, mpi_note);
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
                              "scenes_pairs.csv, scenes_floor.csv, the largest floor (scenes_floor_scene.rad, "
                              "scenes_floor_apertures.rad, scenes_floor_grid.pts), the office with boxes (scenes_boxes_*), "
-                             "scenes_occluders_one_core.csv and scenes_threads.csv "
+                             "scenes_occluders_one_core.csv, scenes_threads.csv and scenes_mpi.csv "
                              "into {} ({:.1f} s)\n",
                              opt.out, seconds_since(t0));
   return 0;

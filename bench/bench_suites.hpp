@@ -15,6 +15,9 @@ struct BenchOptions {
   bool quiet = false;
   std::string samples = "samples";  // `scenes`, `skies`, `reflections`, `annual`: the folder holding office/ and hall/
   std::string weather = "tests/data/chicago-ohare-tmy3-jan1-3.epw";  // `annual`: an EPW or .wea
+  // `scenes`: this daylit was built with DAYLIT_MPI (cli/mpi_shards.hpp), so that its MPI table
+  // can run it under mpirun.
+  bool mpi_build = false;
 };
 
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost

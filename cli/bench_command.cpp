@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bench/bench_suites.hpp"
+#include "cli/mpi_shards.hpp"
 
 namespace daylit::cli {
 
@@ -29,6 +30,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
   auto suites = std::make_shared<std::vector<Suite>>();
   const auto add_suite = [&](const char* name, const char* summary, const char* description, int (*run)(const BenchOptions&)) {
     auto options = std::make_shared<BenchOptions>();
+    options->mpi_build = mpi::built_with_mpi();
     CLI::App* command = bench->add_subcommand(name, summary);
     command->footer(description);
     command->add_option("--out", options->out, "Directory for the tables and plots (created if missing)")->required();

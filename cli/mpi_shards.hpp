@@ -49,6 +49,7 @@ class Session {
   Session& operator=(const Session&) = delete;
 };
 
+bool built_with_mpi();  // DAYLIT_MPI: mpi_shards_mpi.cpp (`daylit bench scenes` runs it under mpirun)
 int rank();        // 0 … ranks() − 1
 int ranks();       // 1 without MPI or without mpirun
 inline bool root() { return rank() == 0; }

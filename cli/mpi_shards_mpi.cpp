@@ -113,6 +113,7 @@ Session::~Session() {
   if (initialised_here) MPI_Finalize();
 }
 
+bool built_with_mpi() { return true; }
 int rank() { return world_rank; }
 int ranks() { return world_size; }
 

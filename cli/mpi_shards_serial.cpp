@@ -10,6 +10,7 @@ namespace daylit::cli::mpi {
 Session::Session(int&, char**&) {}
 Session::~Session() = default;
 
+bool built_with_mpi() { return false; }
 int rank() { return 0; }
 int ranks() { return 1; }
 

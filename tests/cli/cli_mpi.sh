@@ -199,6 +199,18 @@ mpi 2 df "${room[@]}" --out "$work/fail.csv" --summary "$work/no/such/dir/s.json
 grep -q "^error: .*no/such/dir" "$work/fail3.err" || fail "write failure message: $(cat "$work/fail3.err")"
 [ ! -e "$work/fail.csv" ] || fail "a failed write left the CSV"
 
+# ---- The scaling report's MPI table (`daylit bench scenes`, issue 13 part 4): df alone and under
+# mpirun -n 1 and -n 2, one thread each, the CSVs byte for byte the same.
+"$daylit" bench scenes --quick --quiet --samples "$samples" --out "$work/bench" > /dev/null || fail "bench scenes --quick"
+python3 - "$work/bench/scenes_mpi.csv" <<'PY' || fail "scenes_mpi.csv: $(cat "$work/bench/scenes_mpi.csv")"
+import csv, sys
+lines = open(sys.argv[1]).read().splitlines()
+assert lines[0].startswith("# the office with the most boxes of the scaling"), lines[0]
+rows = list(csv.DictReader(lines[1:]))
+assert [r["ranks"] for r in rows] == ["none", "1", "2"], rows
+assert all(r["identical_to_one_process"] == "yes" and float(r["wall_s"]) > 0 for r in rows), rows
+PY
+
 if [ "$failures" -gt 0 ]; then
   echo "$failures failure(s)"
   exit 1
