@@ -81,37 +81,40 @@ std::vector<double> least_squares_monomials(const std::vector<double>& mu, const
 
 }  // namespace
 
-double glass_transmittance(const GlassOptics& glass, double mu) {
-  mu = std::clamp(mu, 0.0, 1.0);
-  if (mu == 0) return 0;  // grazing: the Fresnel reflectances reach 1
+namespace {
+
+// m_glass's angle terms at cosine of incidence μ ∈ (0, 1]: the refracted cosine
+// cos θ_t = √(1 − (1 − μ²)/n²) and the two polarisations' Fresnel reflectances; then, per channel
+// of transmissivity t, the pass transmittance d = t^{1/cos θ_t}, and `per_pass(r_s, r_p, d)`
+// summed with Radiance's luminance weights.
+template <class PerPass>
+double luminance_over_channels(const GlassOptics& glass, double mu, PerPass&& per_pass) {
   const double n = glass.refractive_index;
   const double cos_t = std::sqrt((1 - 1 / (n * n)) + mu * mu / (n * n));
   const double rs = std::pow((mu - n * cos_t) / (mu + n * cos_t), 2);
   const double rp = std::pow((1 / mu - n / cos_t) / (1 / mu + n / cos_t), 2);
   double total = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double d = std::pow(glass.transmissivity[c], 1 / cos_t);
-    const double t = 0.5 * (1 - rs) * (1 - rs) * d / (1 - rs * rs * d * d) + 0.5 * (1 - rp) * (1 - rp) * d / (1 - rp * rp * d * d);
-    total += kRadianceLuminanceWeights[c] * t;
-  }
+  for (int c = 0; c < 3; ++c) total += kRadianceLuminanceWeights[c] * per_pass(rs, rp, std::pow(glass.transmissivity[c], 1 / cos_t));
   return total;
+}
+
+}  // namespace
+
+double glass_transmittance(const GlassOptics& glass, double mu) {
+  mu = std::clamp(mu, 0.0, 1.0);
+  if (mu == 0) return 0;  // grazing: the Fresnel reflectances reach 1
+  return luminance_over_channels(glass, mu, [](double rs, double rp, double d) {
+    return 0.5 * (1 - rs) * (1 - rs) * d / (1 - rs * rs * d * d) + 0.5 * (1 - rp) * (1 - rp) * d / (1 - rp * rp * d * d);
+  });
 }
 
 double glass_reflectance(const GlassOptics& glass, double mu) {
   mu = std::clamp(mu, 0.0, 1.0);
   if (mu == 0) return 1;  // grazing: r_s = r_p = 1
-  const double n = glass.refractive_index;
-  const double cos_t = std::sqrt((1 - 1 / (n * n)) + mu * mu / (n * n));
-  const double rs = std::pow((mu - n * cos_t) / (mu + n * cos_t), 2);
-  const double rp = std::pow((1 / mu - n / cos_t) / (1 / mu + n / cos_t), 2);
-  double total = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double d2 = std::pow(glass.transmissivity[c], 2 / cos_t);
-    const double r = 0.5 * rs * (1 + (1 - 2 * rs) * d2) / (1 - rs * rs * d2) +
-                     0.5 * rp * (1 + (1 - 2 * rp) * d2) / (1 - rp * rp * d2);
-    total += kRadianceLuminanceWeights[c] * r;
-  }
-  return total;
+  return luminance_over_channels(glass, mu, [](double rs, double rp, double d) {
+    const double d2 = d * d;
+    return 0.5 * rs * (1 + (1 - 2 * rs) * d2) / (1 - rs * rs * d2) + 0.5 * rp * (1 + (1 - 2 * rp) * d2) / (1 - rp * rp * d2);
+  });
 }
 
 double glass_diffuse_reflectance(const GlassOptics& glass) {
