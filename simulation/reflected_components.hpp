@@ -1,7 +1,8 @@
 #pragma once
 // The externally and internally reflected components of the daylight factor (DESIGN.md §4): a
-// radiosity solution over every reflecting polygon of the scene, first lit by the sky and the far
-// ground exactly, then evaluated at the sensors.
+// radiosity solution over every reflecting polygon of the scene and every aperture's pane that
+// reflects (Aperture::reflectance: glass, trans; a surface on both sides that also lets light
+// through), first lit by the sky and the far ground exactly, then evaluated at the sensors.
 //
 // Per unit zenith luminance, as the sky component (sky_component.hpp); DF = 100·E/E_out.
 //   First bounce at a receiver (x, n): (a) through each aperture the sky above the horizon and the
@@ -35,8 +36,8 @@
 //   error (first order; linear elements converge at second order where the exitance is smooth,
 //   measured 2.6 on a window room, so the actual error is then about a sixth of the estimate): an
 //   estimate, not a rigorous bound. While a sensor's estimate exceeds the tolerance and rounds
-//   remain, the mesh is refined locally: the sensors over it flag the elements with the largest
-//   terms (local_refinement in the .cpp), the finer mesh becomes the coarse one and only the
+//   remain, the mesh is refined locally: the sensors over it flag the elements whose split lowers
+//   their estimate most (local_refinement in the .cpp), the finer mesh becomes the coarse one and only the
 //   flagged elements are split; the others keep their terms in the estimate, and the new rows
 //   keep every entry of the elements not split (a round costs about the new elements' rows, the
 //   refined surfaces' visibility from the old nodes, and the sensors).
