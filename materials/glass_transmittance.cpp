@@ -79,10 +79,6 @@ std::vector<double> least_squares_monomials(const std::vector<double>& mu, const
   return {monomial.begin(), monomial.end()};
 }
 
-}  // namespace
-
-namespace {
-
 // m_glass's angle terms at cosine of incidence μ ∈ (0, 1]: the refracted cosine
 // cos θ_t = √(1 − (1 − μ²)/n²) and the two polarisations' Fresnel reflectances; then, per channel
 // of transmissivity t, the pass transmittance d = t^{1/cos θ_t}, and `per_pass(r_s, r_p, d)`

@@ -57,7 +57,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
   Tally void_in_scene, opaque_in_apertures, sources, interior_glass, interior_copies;
   std::vector<const Polygon*> interior_panes;
   struct GlassFit {
-    double transmittance = 0, reflectance = 0;  // at normal incidence; for diffuse light
+    double transmittance = 0;                 // at normal incidence
+    double reflectance = 0, normal_reflectance = 0;  // for diffuse light; at normal incidence
     TransmittancePolynomial fit;
   };
   std::map<std::string, GlassFit> glass_fits;  // by material name
@@ -85,8 +86,8 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
       if (fitted == glass_fits.end()) {
         const GlassOptics optics = glass_optics(*material);
         fitted = glass_fits
-                     .emplace(material->name, GlassFit{glass_transmittance(optics, 1.0),
-                                                       glass_diffuse_reflectance(optics), fit_glass_transmittance(optics)})
+                     .emplace(material->name, GlassFit{glass_transmittance(optics, 1.0), glass_diffuse_reflectance(optics),
+                                                       glass_reflectance(optics, 1.0), fit_glass_transmittance(optics)})
                      .first;
       }
       const GlassFit& g = fitted->second;
@@ -96,7 +97,7 @@ Scene assemble_scene(const RadContent& content, const SceneOptions& options) {
                     "glass model, fitted by a degree-%zu polynomial in cos θ (max error %.1e); it reflects %.4f of "
                     "diffuse light (%.4f at normal incidence), which the reflected components send back diffusely",
                     g.transmittance, g.fit.coefficients.size() - 1, g.fit.max_error, g.reflectance,
-                    glass_reflectance(glass_optics(*material), 1.0));
+                    g.normal_reflectance);
       describe_once(*material, "glass '" + material->name + text);
       scene.apertures.push_back({poly, g.transmittance, g.fit.coefficients, g.fit.max_error, g.reflectance});
     } else if (type == "BSDF" || type == "aBSDF") {
