@@ -244,6 +244,12 @@ Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec
   return escalate_tracked(1, [&](auto r) { return lambert_sum<decltype(r)>(region, n); });
 }
 
+Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec3& n, double tolerance,
+                                        double absolute_tolerance) {
+  return escalate_tracked(
+      1, [&](auto r) { return lambert_sum<decltype(r)>(region, n); }, tolerance, absolute_tolerance);
+}
+
 double lambert(const SphericalRegion& region, const Vec3& n) { return lambert_with_accuracy(region, n).value; }
 
 // The kernels take a unit axis; (w·u)^n = |w|^n (ŵ·u)^n. |w|^n from |w|² in long double: pow(norm(w),

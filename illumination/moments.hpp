@@ -96,6 +96,11 @@ PolynomialCosineMoments polynomial_cosine_moments(const SphericalRegion& region,
 // cancellation beyond what __float128 carries), the precision that settled it (0 double, 1 long
 // double, 2 __float128) and the κ of the double pass.
 Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec3& n);
+// The same to a caller's target: relative `tolerance`, or `absolute_tolerance` where that is
+// positive (escalate()), for a term whose digits beyond some level are nobody's (the radiosity
+// transport's, element_transport.cpp).
+Escalated<double> lambert_with_accuracy(const SphericalRegion& region, const Vec3& n, double tolerance,
+                                        double absolute_tolerance);
 Escalated<std::vector<double>> axial_moments_with_accuracy(const SphericalRegion& region, const Vec3& w, int n);
 Escalated<double> axial_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, int n);
 Escalated<double> double_axis_moment_with_accuracy(const SphericalRegion& region, const Vec3& w, const Vec3& v, int n);
