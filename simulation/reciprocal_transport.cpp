@@ -32,29 +32,40 @@ void sort_row(TransportRow& row) {
   std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
-// Per live row j, the live rows u that have column j and where in row u it is, in increasing u
-// (a transpose by buckets: linear in the entries).
-struct Transpose {
-  std::vector<std::size_t> begin;                            // per row, n + 1
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> at;   // (u, position of j in row u)
-};
-template <class Live>
-Transpose transpose(const std::vector<TransportRow>& rows, const Live& live) {
-  const std::size_t n = rows.size();
-  Transpose t;
-  t.begin.assign(n + 1, 0);
-  for (std::size_t u = 0; u < n; ++u)
-    if (live(u))
-      for (const auto& e : rows[u])
-        if (live(e.first)) ++t.begin[e.first + 1];
-  for (std::size_t j = 0; j < n; ++j) t.begin[j + 1] += t.begin[j];
-  t.at.resize(t.begin[n]);
-  std::vector<std::size_t> fill(t.begin.begin(), t.begin.end() - 1);
-  for (std::size_t u = 0; u < n; ++u)
-    if (live(u))
-      for (std::size_t i = 0; i < rows[u].size(); ++i)
-        if (live(rows[u][i].first)) t.at[fill[rows[u][i].first]++] = {std::uint32_t(u), std::uint32_t(i)};
-  return t;
+// The sweep below runs in this many chunks of rows (each keeps a cursor per row).
+std::size_t partner_chunks(std::size_t n) { return std::min<std::size_t>(n, 16); }
+
+// Calls visit(chunk, u, partner) for every live row u, with partner[i] the position of column u in
+// row j = rows[u][i].first where j is live and row j holds it, kNone otherwise. The rows, sorted
+// by column, are swept in chunks of increasing u in parallel; a chunk's cursor in row j starts at
+// j's first column at or after the chunk's first row and only moves forward, so each chunk reads
+// the rows in order: linear in the entries, and nothing as large as K allocated (a transpose of
+// the office's 14 million entries cost more in page faults than in work).
+template <class Live, class Visit>
+void sweep_partners(const std::vector<TransportRow>& rows, const Live& live, Visit&& visit) {
+  const std::size_t n = rows.size(), chunks = partner_chunks(n);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    const std::size_t begin = c * n / chunks, end = (c + 1) * n / chunks;
+    std::vector<std::size_t> cursor(n);
+    for (std::size_t j = 0; j < n; ++j)
+      cursor[j] = std::size_t(std::lower_bound(rows[j].begin(), rows[j].end(), begin,
+                                               [](const auto& e, std::size_t u) { return e.first < u; }) -
+                              rows[j].begin());
+    std::vector<std::uint32_t> partner;
+    for (std::size_t u = begin; u < end; ++u) {
+      if (!live(u)) continue;
+      partner.assign(rows[u].size(), kNone);
+      for (std::size_t i = 0; i < rows[u].size(); ++i) {
+        const std::uint32_t j = rows[u][i].first;
+        if (!live(j)) continue;
+        const TransportRow& other = rows[j];
+        std::size_t& at = cursor[j];
+        while (at < other.size() && other[at].first < u) ++at;
+        if (at < other.size() && other[at].first == u) partner[i] = std::uint32_t(at);
+      }
+      visit(c, u, partner);
+    }
+  });
 }
 
 }  // namespace
@@ -79,58 +90,52 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
   });
 
   // The partner (j, u) of every collocated (u, j) between live unknowns, added with K = 0 where
-  // node j sees nothing of u's element while node u sees part of j's (one-sided visibility):
-  // row j and the transpose's bucket j, both sorted, merged.
-  Transpose tr = transpose(rows, live);
+  // node j sees nothing of u's element while node u sees part of j's (one-sided visibility).
+  // missing[j] lists such u in increasing u: the chunks' finds, in the chunks' order.
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(partner_chunks(n));
+  sweep_partners(rows, live, [&](std::size_t chunk, std::size_t u, const std::vector<std::uint32_t>& partner) {
+    for (std::size_t i = 0; i < partner.size(); ++i)
+      if (partner[i] == kNone && live(rows[u][i].first)) found[chunk].emplace_back(rows[u][i].first, std::uint32_t(u));
+  });
   std::vector<std::vector<std::uint32_t>> missing(n);
+  for (const auto& list : found)
+    for (const auto& [j, u] : list) missing[j].push_back(u);
+  found = {};
+  // Both lists are sorted by column and share none: merged, row j is sorted as a sort would leave it.
   for_rows(n, [&](std::size_t j) {
-    if (!live(j)) return;
-    const TransportRow& row = rows[j];
-    std::size_t i = 0;
-    for (std::size_t b = tr.begin[j]; b < tr.begin[j + 1]; ++b) {
-      const std::uint32_t u = tr.at[b].first;
-      while (i < row.size() && row[i].first < u) ++i;
-      if (i == row.size() || row[i].first != u) missing[j].push_back(u);
+    if (missing[j].empty()) return;
+    TransportRow merged;
+    merged.reserve(rows[j].size() + missing[j].size());
+    auto it = rows[j].begin();
+    for (std::uint32_t u : missing[j]) {
+      for (; it != rows[j].end() && it->first < u; ++it) merged.push_back(*it);
+      merged.emplace_back(u, 0.0);
     }
+    merged.insert(merged.end(), it, rows[j].end());
+    rows[j] = std::move(merged);
   });
-  for (std::size_t j = 0; j < n; ++j) {
-    if (missing[j].empty()) continue;
-    report.entries_added += missing[j].size();
-    for (std::uint32_t u : missing[j]) rows[j].emplace_back(u, 0.0);
-    sort_row(rows[j]);
-  }
-  missing.clear();
-  if (report.entries_added > 0) tr = transpose(rows, live);
-
-  // Where each entry's partner is: every live (u, j) now has its (j, u).
-  std::vector<std::vector<std::uint32_t>> partner(n);
-  for_rows(n, [&](std::size_t j) {
-    if (!live(j)) return;
-    const TransportRow& row = rows[j];
-    partner[j].assign(row.size(), kNone);
-    std::size_t i = 0;
-    for (std::size_t b = tr.begin[j]; b < tr.begin[j + 1]; ++b) {
-      const auto [u, at] = tr.at[b];
-      while (row[i].first < u) ++i;
-      partner[j][i] = at;
-    }
-  });
-  tr = {};
+  for (std::size_t j = 0; j < n; ++j) report.entries_added += missing[j].size();
+  missing = {};
 
   // S = (G + Gᵀ)/2 on live pairs (0 towards sides left out), what escapes X, and d.
+  // The columns again, apart from K's values: conjugate gradients read only them and S, 12 bytes
+  // an entry instead of 24 (it is bound by memory traffic).
   std::vector<std::vector<double>> s(n);
+  std::vector<std::vector<std::uint32_t>> column(n);
   std::vector<double> escape(n, 0.0), diagonal(n, 0.0), d(n, 0.0), row_sum(n, 0.0);
-  for_rows(n, [&](std::size_t u) {
-    if (!live(u)) return;
+  // Every live (u, j) now has its (j, u).
+  sweep_partners(rows, live, [&](std::size_t, std::size_t u, const std::vector<std::uint32_t>& partner) {
     s[u].assign(rows[u].size(), 0.0);
+    column[u].resize(rows[u].size());
+    for (std::size_t i = 0; i < rows[u].size(); ++i) column[u][i] = rows[u][i].first;
     double received = 0, degree = 0, defect = 0, f = 0;
     for (std::size_t i = 0; i < rows[u].size(); ++i) {
       const auto [j, k] = rows[u][i];
       const double g = weight[u] * k;
       received += g;
       f += k;
-      if (partner[u][i] == kNone) continue;
-      s[u][i] = (g + weight[j] * rows[j][partner[u][i]].second) / 2;  // the same from both sides
+      if (partner[i] == kNone) continue;
+      s[u][i] = (g + weight[j] * rows[j][partner[i]].second) / 2;  // the same from both sides
       degree += std::abs(s[u][i]);
       defect += s[u][i] - g;
     }
@@ -145,14 +150,15 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
     report.entries += s[u].size();
     report.reciprocity_defect = std::max(report.reciprocity_defect, std::abs(d[u]) / weight[u]);
   }
-  partner = {};
 
   // (diag + |S|) λ = d by conjugate gradients, Jacobi-preconditioned.
   const auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
     for_rows(n, [&](std::size_t u) {
       if (!live(u)) return;
       double v = diagonal[u] * x[u];
-      for (std::size_t i = 0; i < rows[u].size(); ++i) v += std::abs(s[u][i]) * x[rows[u][i].first];
+      const std::uint32_t* j = column[u].data();
+      const double* su = s[u].data();
+      for (std::size_t i = 0; i < s[u].size(); ++i) v += std::abs(su[i]) * x[j[i]];
       y[u] = v;
     });
   };

@@ -53,8 +53,8 @@ struct ReciprocityReport {
 // Replaces `rows` (K, rows of unknowns of weight `weight[u]`, model units²) by the reciprocal and
 // closed K' above. Unknowns of weight 0 (sides left out) take no part: their rows stay as they are
 // and entries towards them count as escaping. Rows' entries are sorted by column and duplicate
-// columns merged. Cost: O(entries · log(row length)) for the pairing, then O(entries) per
-// iteration (about 20–60 on rooms).
+// columns merged. Cost: O(entries · log(row length)) for the sort, O(entries) for the pairing (a
+// sweep, in parallel), then O(entries) per iteration (about 20–60 on rooms).
 ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::vector<double>& weight);
 
 }  // namespace daylit
