@@ -242,6 +242,82 @@ std::vector<Vec3> punched(std::vector<Vec3> boundary, std::vector<std::vector<Ve
   return v;
 }
 
+// The holes of a polygon cut by seams (punched's inverse, for any bridging, as Honeybee's writer
+// and ladybug-geometry make them): edges traversed both ways (the seams) cancel, and what is left
+// is chained into closed loops; those turning against the whole polygon are its holes, returned
+// turning as the polygon does. Coordinates are compared exactly: a seam repeats the same numbers.
+// A polygon whose remaining edges do not close into loops has no holes found (none returned).
+std::vector<std::vector<Vec3>> seam_holes(const std::vector<Vec3>& vertices) {
+  const auto same = [](const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  struct Edge {
+    Vec3 from, to;
+    bool used = false;
+  };
+  std::vector<Edge> edges;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3& a = vertices[i];
+    const Vec3& b = vertices[(i + 1) % vertices.size()];
+    if (!same(a, b)) edges.push_back({a, b});
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = i + 1; j < edges.size() && !edges[i].used; ++j)
+      if (!edges[j].used && same(edges[i].from, edges[j].to) && same(edges[i].to, edges[j].from))
+        edges[i].used = edges[j].used = true;
+  std::vector<std::vector<Vec3>> loops;
+  for (std::size_t start = 0; start < edges.size(); ++start) {
+    if (edges[start].used) continue;
+    std::vector<Vec3> loop;
+    std::size_t at = start;
+    while (true) {
+      edges[at].used = true;
+      loop.push_back(edges[at].from);
+      if (same(edges[at].to, loop.front())) break;
+      // The next edge from where this one ends, searched onward in the polygon's order.
+      std::size_t next = edges.size();
+      for (std::size_t k = 1; k < edges.size() && next == edges.size(); ++k) {
+        const std::size_t c = (at + k) % edges.size();
+        if (!edges[c].used && same(edges[c].from, edges[at].to)) next = c;
+      }
+      if (next == edges.size()) return {};
+      at = next;
+    }
+    loops.push_back(std::move(loop));
+  }
+  if (loops.size() < 2) return {};
+  const Vec3 n = newell_normal(vertices);
+  std::vector<std::vector<Vec3>> holes;
+  for (auto& loop : loops)
+    if (dot(newell_normal(loop), n) < 0) {
+      std::reverse(loop.begin(), loop.end());
+      holes.push_back(std::move(loop));
+    }
+  return holes;
+}
+
+// Honeybee punches a face by the outer outline of each of its apertures and doors, so a hole in an
+// aperture or door on the outside is open: Radiance sees the sky through it (an empty part of the
+// polygon and of the wall). Each such hole becomes an opening of its own, a `void` polygon in an
+// aperture file (transmittance 1), named "<name> hole <k>". Between two rooms a hole is nothing,
+// which the punched polygon already is. Returns how many holes were opened.
+std::size_t open_holes(const Polygon& opening, std::vector<std::vector<Vec3>> holes, RadContent& content) {
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    Polygon hole;
+    hole.vertices = std::move(holes[k]);
+    hole.name = opening.name + " hole " + std::to_string(k + 1);
+    hole.material = "void";
+    hole.where = opening.where;
+    check_polygon(hole);
+    content.polygons.push_back({std::move(hole), true});
+  }
+  return holes.size();
+}
+
+std::string open_holes_notice(const std::string& source, std::size_t holes, std::size_t openings) {
+  return source + ": " + std::to_string(holes) + " holes in " + std::to_string(openings) +
+         " apertures or doors taken as openings of transmittance 1 (Honeybee cuts the wall by the outer outline, so "
+         "the sky is seen through them, as in Radiance)";
+}
+
 // ---------------------------------------------------------------------------------------------
 // The model.
 
@@ -428,10 +504,11 @@ class HbjsonReader {
     const json& radiance = Reader::optional(Reader::optional(sub, "properties"), "radiance");
     const json& group = Reader::optional(radiance, "dynamic_group_identifier");
     const json& states = Reader::optional(radiance, "states");
-    const json& state_modifier = states.is_array() && !states.empty() ? Reader::optional(states[0], "modifier") : states;
-    if (!group.is_null() && state_modifier.is_string()) {
-      // A dynamic group: its first state, the one Honeybee writes as the group's default.
-      ++dynamic_;
+    const json* state = !group.is_null() && states.is_array() && !states.empty() ? &states[0] : nullptr;
+    if (state) ++dynamic_;
+    if (const json& state_modifier = state ? Reader::optional(*state, "modifier") : states; state_modifier.is_string()) {
+      // A dynamic group: its first state, the one Honeybee writes as the group's default (a state
+      // without a modifier takes the aperture's own).
       modifier = state_modifier.get<std::string>();
     } else if (const auto own = own_modifier(sub, path)) {
       modifier = *own;
@@ -444,8 +521,20 @@ class HbjsonReader {
       modifier = !outdoors ? set.aperture_interior : operable ? set.operable : parent_type == "Wall" ? set.window : set.skylight;
     }
     const json& g = r_.member(sub, path, "geometry");
-    add_polygon(r_.loop(r_.member(g, path + ".geometry", "boundary"), path + ".geometry.boundary"), sub, path,
-                use(modifier, path), outdoors, !outdoors);
+    std::vector<Vec3> boundary = r_.loop(r_.member(g, path + ".geometry", "boundary"), path + ".geometry.boundary");
+    std::vector<std::vector<Vec3>> holes;
+    const json& own_holes = r_.array_member(g, path + ".geometry", "holes");
+    for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path + ".geometry", "holes", i)));
+    std::vector<std::vector<Vec3>> open = holes;
+    const Vec3 n = newell_normal(boundary);
+    for (auto& h : open)
+      if (dot(newell_normal(h), n) < 0) std::reverse(h.begin(), h.end());
+    add_polygon(punched(std::move(boundary), std::move(holes)), sub, path, use(modifier, path), outdoors, !outdoors);
+    if (outdoors && !open.empty()) {
+      opened_holes_ += open_holes(out_.content.polygons.back().polygon, std::move(open), out_.content);
+      ++with_open_holes_;
+    }
+    if (state) read_state_shades(*state, path + ".properties.radiance.states[0]");
     for (const char* key : {"outdoor_shades", "indoor_shades"}) {
       const json& shades = r_.array_member(sub, path, key);
       for (std::size_t i = 0; i < shades.size(); ++i)
@@ -463,12 +552,42 @@ class HbjsonReader {
       const bool detached = Reader::optional(shade, "is_detached").is_boolean() && shade["is_detached"].get<bool>();
       modifier = detached ? kContextModifier : ModifierSet{}.shade_exterior;
     }
-    const json& geometry = r_.member(shade, path, "geometry");
+    // A dynamic shade group: its first state, as Honeybee's static octree includes it (`octree
+    // from-folder`'s default --first-shade-state); a state without a modifier takes the shade's.
+    const json& radiance = Reader::optional(Reader::optional(shade, "properties"), "radiance");
+    const json& states = Reader::optional(radiance, "states");
+    const json* state = !Reader::optional(radiance, "dynamic_group_identifier").is_null() && states.is_array() && !states.empty()
+                            ? &states[0]
+                            : nullptr;
+    if (state) {
+      ++dynamic_shades_;
+      if (const json& m = Reader::optional(*state, "modifier"); !m.is_null())
+        modifier = r_.string(m, path + ".properties.radiance.states[0].modifier");
+    }
+    add_polygon(punched_face(r_.member(shade, path, "geometry"), path + ".geometry"), shade, path, use(modifier, path), false, false);
+    if (state) read_state_shades(*state, path + ".properties.radiance.states[0]");
+  }
+
+  // The boundary of a Face3D with its holes cut by seams.
+  std::vector<Vec3> punched_face(const json& geometry, const std::string& path) {
     std::vector<std::vector<Vec3>> holes;
-    const json& own_holes = r_.array_member(geometry, path + ".geometry", "holes");
-    for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path + ".geometry", "holes", i)));
-    add_polygon(punched(r_.loop(r_.member(geometry, path + ".geometry", "boundary"), path + ".geometry.boundary"), std::move(holes)),
-                shade, path, use(modifier, path), false, false);
+    const json& own_holes = r_.array_member(geometry, path, "holes");
+    for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path, "holes", i)));
+    return punched(r_.loop(r_.member(geometry, path, "boundary"), path + ".boundary"), std::move(holes));
+  }
+
+  // The geometry a dynamic group's state adds (StateGeometry: Honeybee writes it into the state's
+  // file), with its modifier, else Honeybee's generic exterior shade.
+  void read_state_shades(const json& state, const std::string& path) {
+    const json& shades = r_.array_member(state, path, "shades");
+    for (std::size_t i = 0; i < shades.size(); ++i) {
+      const std::string shade_path = indexed(path, "shades", i);
+      const json& m = Reader::optional(shades[i], "modifier");
+      const std::string modifier = m.is_null() ? ModifierSet{}.shade_exterior : r_.string(m, shade_path + ".modifier");
+      add_polygon(punched_face(r_.member(shades[i], shade_path, "geometry"), shade_path + ".geometry"), shades[i], shade_path,
+                  use(modifier, shade_path), false, false);
+      ++state_shades_;
+    }
   }
 
   // A ShadeMesh: one polygon per mesh face, as Honeybee writes them.
@@ -543,6 +662,11 @@ class HbjsonReader {
       n.push_back(r_.name() + ": " + std::to_string(air_boundaries_) + " air boundaries left out (they let all light through; Honeybee writes no geometry for them)");
     if (dynamic_)
       n.push_back(r_.name() + ": " + std::to_string(dynamic_) + " apertures of dynamic groups taken in their first state (the default Honeybee writes); the other states are left out");
+    if (dynamic_shades_)
+      n.push_back(r_.name() + ": " + std::to_string(dynamic_shades_) + " shades of dynamic groups taken in their first state (as Honeybee's static octree includes them); the other states are left out");
+    if (state_shades_)
+      n.push_back(r_.name() + ": " + std::to_string(state_shades_) + " shades that the first states of dynamic groups add");
+    if (opened_holes_) n.push_back(open_holes_notice(r_.name(), opened_holes_, with_open_holes_));
     if (merged_grids_)
       n.push_back(r_.name() + ": " + std::to_string(merged_grids_) + " sensor grids share an identifier with an earlier one and are merged into it, as Honeybee does");
     if (with_inner_modifier_)
@@ -555,7 +679,8 @@ class HbjsonReader {
   std::map<std::string, Material> modifiers_;
   std::map<std::string, ModifierSet> sets_;
   std::string room_;  // the room whose faces are being read
-  long air_boundaries_ = 0, dynamic_ = 0, merged_grids_ = 0, with_inner_modifier_ = 0;
+  long air_boundaries_ = 0, dynamic_ = 0, dynamic_shades_ = 0, state_shades_ = 0, merged_grids_ = 0, with_inner_modifier_ = 0;
+  std::size_t opened_holes_ = 0, with_open_holes_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -587,6 +712,23 @@ void mark_interior_copies(RadContent& content) {
         glass[i]->interior = glass[j]->interior = true;
 }
 
+// The first (default) state of each group in `dir`/states.json, read as aperture files or scene
+// files, each said in a notice.
+void read_first_states(const fs::path& dir, bool aperture_files, const std::string& what, RadContent& content) {
+  const fs::path states = dir / "states.json";
+  if (!fs::exists(states)) return;
+  const json groups = json_input::read_file(states.string());
+  const Reader r(states.string());
+  if (!groups.is_object()) r.fail("(top)", "expected an object of " + what + "s");
+  for (const auto& [group, list] : groups.items()) {
+    if (!list.is_array() || list.empty()) r.fail(group, "expected an array of states");
+    const std::string file = r.string(r.member(list[0], group + "[0]", "default"), group + "[0].default");
+    read_rad_file((dir / file).lexically_normal().string(), aperture_files, content);
+    content.notices.push_back(states.string() + ": " + what + " " + printable(group) +
+                              " taken in its first state (the default); the other states are left out");
+  }
+}
+
 HoneybeeModel read_folder(const fs::path& given) {
   const fs::path root = fs::is_directory(given / "model") ? given / "model" : given;
   if (!fs::is_directory(root / "scene") && !fs::is_directory(root / "aperture"))
@@ -598,18 +740,22 @@ HoneybeeModel read_folder(const fs::path& given) {
     for (const auto& f : files_matching(root / sub, ".mat")) read_rad_file(f.string(), apertures, out.content);
     for (const auto& f : files_matching(root / sub, ".rad")) read_rad_file(f.string(), apertures, out.content);
   }
-  if (const fs::path states = root / "aperture_group" / "states.json"; fs::exists(states)) {
-    const json groups = json_input::read_file(states.string());
-    const Reader r(states.string());
-    if (!groups.is_object()) r.fail("(top)", "expected an object of aperture groups");
-    for (const auto& [group, list] : groups.items()) {
-      if (!list.is_array() || list.empty()) r.fail(group, "expected an array of states");
-      const std::string file = r.string(r.member(list[0], group + "[0]", "default"), group + "[0].default");
-      read_rad_file((root / "aperture_group" / file).lexically_normal().string(), true, out.content);
-      out.content.notices.push_back(states.string() + ": aperture group " + printable(group) +
-                                    " taken in its first state (the default); the other states are left out");
-    }
+  read_first_states(root / "aperture_group", true, "aperture group", out.content);
+  // Dynamic shade groups in their first state, as Honeybee's static octree includes them (`octree
+  // from-folder`'s default --first-shade-state), outdoor and indoor.
+  read_first_states(root / "scene_dynamic", false, "shade group", out.content);
+  read_first_states(root / "scene_dynamic" / "indoor", false, "shade group", out.content);
+  // Holes cut in apertures and doors (their seams) are open: see open_holes.
+  std::size_t holes = 0, openings = 0;
+  for (std::size_t i = 0, n = out.content.polygons.size(); i < n; ++i) {
+    if (!out.content.polygons[i].from_aperture_file) continue;
+    std::vector<std::vector<Vec3>> found = seam_holes(out.content.polygons[i].polygon.vertices);
+    if (found.empty()) continue;
+    const Polygon opening = out.content.polygons[i].polygon;  // copied: open_holes appends to the same vector
+    holes += open_holes(opening, std::move(found), out.content);
+    ++openings;
   }
+  if (holes) out.content.notices.push_back(open_holes_notice(root.string(), holes, openings));
   mark_interior_copies(out.content);
   const fs::path grid_dir = root / "grid";
   std::vector<fs::path> grids;
@@ -629,8 +775,6 @@ HoneybeeModel read_folder(const fs::path& given) {
     out.grids.push_back(read_sensor_grid(g.string()));
     out.grids.back().name = g.stem().string();
   }
-  if (fs::is_directory(root / "scene_dynamic"))
-    out.content.notices.push_back((root / "scene_dynamic").string() + ": dynamic shade groups are left out");
   return out;
 }
 

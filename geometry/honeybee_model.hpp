@@ -12,13 +12,19 @@
 // Outdoors boundary condition come from "aperture files" (their glass is a sky opening, opaque
 // doors are occluders); those on a Surface boundary condition (between two rooms) are marked
 // RadContent::Entry::interior. Air boundaries are left out (Honeybee writes no geometry for them).
+// A hole in an aperture or door on the outside is an opening of transmittance 1 (Honeybee cuts the
+// wall by the outer outline, so Radiance sees the sky through it). Dynamic groups, apertures and
+// shades, are taken in their first state with the geometry that state adds, as Honeybee's static
+// octree includes them.
 // The geometry is read as it is: Honeybee's translator moves one face of each pair shared by two
 // rooms 2 × tolerance into its room, so the two paths may differ there, and only there.
 //
 // Radiance folder: model/scene/*.mat then *.rad, model/aperture/*.mat then *.rad, the first
-// (static default) state of each group in model/aperture_group/states.json, and the grids of
-// model/grid (in _info.json's order, else by file name). The .blk files (black redefinitions of
-// the same modifiers, for other simulations) are not read.
+// (static default) state of each group in model/aperture_group/states.json and in the dynamic
+// shade groups' model/scene_dynamic/states.json and scene_dynamic/indoor/states.json, and the grids
+// of model/grid (in _info.json's order, else by file name). The holes that seams cut in polygons
+// of aperture files are openings, as above. The .blk files (black redefinitions of the same
+// modifiers, for other simulations) are not read.
 
 #include <string>
 #include <vector>

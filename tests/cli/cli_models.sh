@@ -88,5 +88,59 @@ fi
 if [ $? -ne 1 ] || ! grep -q "no-such-dir: output directory does not exist" stderr.txt; then echo "FAIL grid: missing folder"; failures=$((failures + 1)); fi
 echo "ok   daylit grid"
 
+
+# The two paths agree: each HBJSON against the Radiance folder Honeybee's own translator wrote
+# from it (folders/: model-to-rad-folder, see README.md), on the grids `daylit grid` lays on its
+# floors (grid_views: the model's own grids, read from each). The readers share nothing but the
+# .rad semantics, so this checks the HBJSON reader's modifier rules, punching, holes (holes: a
+# window with a hole, open to the sky), doors, interior windows and dynamic states (first state:
+# an electrochromic window, a trans tree, a light shelf) against Honeybee's. Allowance 1e-9
+# relative: the geometry is the same doubles (Python's repr round-trips), but polygons and seam
+# vertices come in another order, so the exact visibility cuts the regions otherwise (measured
+# differences at most 2e-12); any difference of meaning is far above it (a face moved by 2 cm:
+# 3e-2 relative). Honeybee moves one face of each pair shared by two rooms 2 x tolerance into its
+# room (afn: NorthRoom..Face1 to y = 10.02; dynamic_states: Tiny_Garage_Left to x = 5.02): those
+# two are compared with that face put back, and as translated they must differ (it is seen).
+agree() {  # model, "components", extra df arguments...; returns 1 if they differ, 2 if a run failed
+  local name="$1" components="$2" folder="$data/folders/$1"
+  shift 2
+  local grid=()
+  if [ "$name" != model_radiance_grid_views ]; then
+    mkdir -p "g_$name"
+    "$daylit" grid --model "$data/$name.hbjson" --out "g_$name" --quiet
+    cat "g_$name"/*.pts > "$name.pts"
+    grid=(--grid "$name.pts")
+  fi
+  if [ -d "moved_$name" ]; then folder="moved_$name"; fi
+  "$daylit" df --components "$components" --model "$data/$name.hbjson" "${grid[@]}" "$@" --out hbjson.csv --quiet &&
+    "$daylit" df --components "$components" --model "$folder" "${grid[@]}" "$@" --out folder.csv --quiet || {
+    echo "FAIL $name: a run failed"; return 2; }
+  python3 - hbjson.csv folder.csv "$name" <<'PY'
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+columns = [c for c in ("sc_percent", "erc_percent", "irc_percent", "df_percent") if c in a[0]]
+assert len(a) == len(b) > 0 and all(x["grid"] == y["grid"] and x["x"] == y["x"] for x, y in zip(a, b)), "sensors differ"
+worst = max(abs(float(x[c]) - float(y[c])) / max(abs(float(x[c])), 1e-300) if float(x[c]) or float(y[c]) else 0.0
+            for x, y in zip(a, b) for c in columns)
+print(("ok  " if worst <= 1e-9 else "FAIL") + f" {sys.argv[3]}: HBJSON and Honeybee's folder agree at {len(a)} sensors ({', '.join(columns)}): worst {worst:.1e}")
+sys.exit(worst > 1e-9)
+PY
+}
+for name in model_5vertex_sub_faces model_complete_multiroom_radiance model_radiance_grid_views model_complete_holes; do
+  agree "$name" sc || failures=$((failures + 1))
+done
+"$daylit" df --components sc --model "$data/folders/model_complete_holes" --grid model_complete_holes.pts --out /dev/null 2> stderr.txt
+if ! grep -q "1 holes in 1 apertures or doors taken as openings of transmittance 1" stderr.txt; then echo "FAIL holes: no notice"; failures=$((failures + 1)); fi
+# The reflected components too: the same materials and reflectances from both.
+agree model_complete_holes all --element-size 3 --max-refinements 0 || failures=$((failures + 1))
+for moved in model_energy_afn:10.02:10.0 model_radiance_dynamic_states:5.02:5.0; do
+  IFS=: read -r name from to <<< "$moved"
+  agree "$name" sc > /dev/null
+  if [ $? -ne 1 ]; then echo "FAIL $name: as translated (its face moved) the paths should differ"; failures=$((failures + 1)); fi
+  cp -r "$data/folders/$name" "moved_$name"
+  sed -i "s/\b${from//./\\.} /$to /g" "moved_$name/model/scene/envelope.rad"
+  agree "$name" sc || failures=$((failures + 1))
+done
+
 echo "$failures failures"
 [ "$failures" -eq 0 ]

@@ -310,3 +310,45 @@ TEST_CASE("Honeybee Radiance folder: .mat before .rad, .blk not read, grids in _
              Contains("not a Honeybee Radiance folder"));
   std::filesystem::remove_all(root);
 }
+
+TEST_CASE("Honeybee: a hole in an aperture is an opening of transmittance 1, from HBJSON and from a folder's seams") {
+  // honeybee-schema's model_complete_holes: a 2 x 2 m window with a 1 x 1 m hole; the wall is cut
+  // by the window's outer outline, so Radiance sees the sky through the hole.
+  const Scene from_hbjson = assemble_scene(read_honeybee_model(kData + "model_complete_holes.hbjson").content);
+  REQUIRE(from_hbjson.apertures.size() == 2);
+  const Aperture* hole = nullptr;
+  for (const auto& a : from_hbjson.apertures)
+    if (a.polygon.name == "HoleAperture hole 1") hole = &a;
+  REQUIRE(hole != nullptr);
+  CHECK(hole->transmittance == 1);
+  CHECK(hole->angular_transmittance.empty());
+  CHECK(area(hole->polygon.vertices) == Approx(1).epsilon(1e-15));
+  bool said = false;
+  for (const auto& n : from_hbjson.notices) said |= n.find("1 holes in 1 apertures or doors taken as openings") != std::string::npos;
+  CHECK(said);
+
+  // A folder's window with two holes, bridged from different boundary vertices (as
+  // ladybug-geometry bridges them), and a window without holes: the holes come back as openings
+  // turning as their window does; the window without holes gets none.
+  const std::filesystem::path root = std::filesystem::temp_directory_path() / "daylit_test_hb_holes";
+  std::filesystem::remove_all(root);
+  write_file(root / "model/aperture/a.mat", "void glass clear 0 0 3 .96 .96 .96\n");
+  write_file(root / "model/aperture/a.rad",
+             "clear polygon w 0 0 48  0 0 0  4 0 0  4 0 3  3 0 2  3 0 1  2 0 1  2 0 2  3 0 2  4 0 3  0 0 3"
+             "  1 0 2.5  1.5 0 2.5  1.5 0 0.5  1 0 0.5  1 0 2.5  0 0 3\n"
+             "clear polygon plain 0 0 12  5 0 0  6 0 0  6 0 1  5 0 1\n");
+  const Scene from_folder = assemble_scene(read_honeybee_model(root.string()).content);
+  REQUIRE(from_folder.apertures.size() == 4);
+  std::vector<double> hole_areas;
+  for (const auto& a : from_folder.apertures)
+    if (a.polygon.material == "void") {
+      CHECK(a.transmittance == 1);
+      CHECK(dot(newell_normal(a.polygon.vertices), newell_normal(from_folder.apertures[0].polygon.vertices)) > 0);
+      hole_areas.push_back(area(a.polygon.vertices));
+    }
+  std::sort(hole_areas.begin(), hole_areas.end());
+  REQUIRE(hole_areas.size() == 2);
+  CHECK(hole_areas[0] == Approx(1).epsilon(1e-15));
+  CHECK(hole_areas[1] == Approx(1).epsilon(1e-15));
+  std::filesystem::remove_all(root);
+}
