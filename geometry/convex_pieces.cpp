@@ -174,6 +174,23 @@ std::vector<ConvexPiece> triangulate(const Polygon& polygon, int k, std::size_t 
   return pieces;
 }
 
+// A convex polygon that is planar only within tolerance, as triangles of its input vertices: the
+// chain v[lo..hi] closed by the chord (hi, lo) is cut by the triangle (lo, mid, hi) at its middle
+// vertex and its two halves cut again. The triangles are compact near the rim, where most of
+// them are, unlike a fan from one vertex, whose n − 2 slivers each reach across the polygon:
+// every view and every culling box of a many-sided disc (a tree crown drawn as a 361-gon) then
+// meets a few of them, not all. A triangle of collinear vertices (in the projection) means the
+// whole chain is straight: nothing to cover.
+void split_convex(const std::vector<Vec3>& v, std::size_t lo, std::size_t hi, int k, std::size_t source,
+                  std::vector<ConvexPiece>& pieces) {
+  if (hi < lo + 2) return;
+  const std::size_t mid = lo + (hi - lo) / 2;
+  if (CGAL::orientation(drop(v[lo], k), drop(v[mid], k), drop(v[hi], k)) == CGAL::COLLINEAR) return;
+  pieces.push_back(make_piece({v[lo], v[mid], v[hi]}, k, source));
+  split_convex(v, lo, mid, k, source, pieces);
+  split_convex(v, mid, hi, k, source, pieces);
+}
+
 }  // namespace
 
 std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t source) {
@@ -184,11 +201,9 @@ std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t sourc
   const auto [b, c] = base_triple(v);
   if (convex_in_projection(v, k)) {
     if (exactly_planar(v, b, c)) return {make_piece(v, k, source)};
-    std::vector<ConvexPiece> fan;
-    for (std::size_t i = 1; i + 1 < v.size(); ++i)
-      if (CGAL::orientation(drop(v[0], k), drop(v[i], k), drop(v[i + 1], k)) != CGAL::COLLINEAR)
-        fan.push_back(make_piece({v[0], v[i], v[i + 1]}, k, source));
-    return fan;
+    std::vector<ConvexPiece> pieces;
+    split_convex(v, 0, v.size() - 1, k, source, pieces);
+    return pieces;
   }
   return triangulate(polygon, k, source);
 }
