@@ -456,11 +456,9 @@ class HbjsonReader {
     const std::string type = r_.string(r_.member(face, path, "face_type"), path + ".face_type");
     const std::string bc = boundary_condition(face, path);
     const bool outdoors = bc == "Outdoors";
-    std::vector<std::vector<Vec3>> holes;
     const json& geometry = r_.member(face, path, "geometry");
     const std::vector<Vec3> boundary = r_.loop(r_.member(geometry, path + ".geometry", "boundary"), path + ".geometry.boundary");
-    const json& own_holes = r_.array_member(geometry, path + ".geometry", "holes");
-    for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path + ".geometry", "holes", i)));
+    std::vector<std::vector<Vec3>> holes = holes_of(geometry, path + ".geometry");
     if (type == "Floor" && !room_.empty()) {
       out_.floors.push_back({room_, {boundary}});
       out_.floors.back().loops.insert(out_.floors.back().loops.end(), holes.begin(), holes.end());
@@ -522,9 +520,7 @@ class HbjsonReader {
     }
     const json& g = r_.member(sub, path, "geometry");
     std::vector<Vec3> boundary = r_.loop(r_.member(g, path + ".geometry", "boundary"), path + ".geometry.boundary");
-    std::vector<std::vector<Vec3>> holes;
-    const json& own_holes = r_.array_member(g, path + ".geometry", "holes");
-    for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path + ".geometry", "holes", i)));
+    std::vector<std::vector<Vec3>> holes = holes_of(g, path + ".geometry");
     std::vector<std::vector<Vec3>> open = holes;
     const Vec3 n = newell_normal(boundary);
     for (auto& h : open)
@@ -568,12 +564,17 @@ class HbjsonReader {
     if (state) read_state_shades(*state, path + ".properties.radiance.states[0]");
   }
 
-  // The boundary of a Face3D with its holes cut by seams.
-  std::vector<Vec3> punched_face(const json& geometry, const std::string& path) {
+  // The holes of a Face3D (`path` names it), as given.
+  std::vector<std::vector<Vec3>> holes_of(const json& geometry, const std::string& path) const {
     std::vector<std::vector<Vec3>> holes;
     const json& own_holes = r_.array_member(geometry, path, "holes");
     for (std::size_t i = 0; i < own_holes.size(); ++i) holes.push_back(r_.loop(own_holes[i], indexed(path, "holes", i)));
-    return punched(r_.loop(r_.member(geometry, path, "boundary"), path + ".boundary"), std::move(holes));
+    return holes;
+  }
+
+  // The boundary of a Face3D with its holes cut by seams.
+  std::vector<Vec3> punched_face(const json& geometry, const std::string& path) {
+    return punched(r_.loop(r_.member(geometry, path, "boundary"), path + ".boundary"), holes_of(geometry, path));
   }
 
   // The geometry a dynamic group's state adds (StateGeometry: Honeybee writes it into the state's
