@@ -500,14 +500,12 @@ class HbjsonReader {
     const bool outdoors = bc == "Outdoors";
     std::string modifier;
     const json& radiance = Reader::optional(Reader::optional(sub, "properties"), "radiance");
-    const json& group = Reader::optional(radiance, "dynamic_group_identifier");
-    const json& states = Reader::optional(radiance, "states");
-    const json* state = !group.is_null() && states.is_array() && !states.empty() ? &states[0] : nullptr;
+    const json* state = first_state(radiance);
     if (state) ++dynamic_;
-    if (const json& state_modifier = state ? Reader::optional(*state, "modifier") : states; state_modifier.is_string()) {
+    if (state && Reader::optional(*state, "modifier").is_string()) {
       // A dynamic group: its first state, the one Honeybee writes as the group's default (a state
       // without a modifier takes the aperture's own).
-      modifier = state_modifier.get<std::string>();
+      modifier = (*state)["modifier"].get<std::string>();
     } else if (const auto own = own_modifier(sub, path)) {
       modifier = *own;
     } else if (door) {
@@ -550,11 +548,7 @@ class HbjsonReader {
     }
     // A dynamic shade group: its first state, as Honeybee's static octree includes it (`octree
     // from-folder`'s default --first-shade-state); a state without a modifier takes the shade's.
-    const json& radiance = Reader::optional(Reader::optional(shade, "properties"), "radiance");
-    const json& states = Reader::optional(radiance, "states");
-    const json* state = !Reader::optional(radiance, "dynamic_group_identifier").is_null() && states.is_array() && !states.empty()
-                            ? &states[0]
-                            : nullptr;
+    const json* state = first_state(Reader::optional(Reader::optional(shade, "properties"), "radiance"));
     if (state) {
       ++dynamic_shades_;
       if (const json& m = Reader::optional(*state, "modifier"); !m.is_null())
@@ -562,6 +556,14 @@ class HbjsonReader {
     }
     add_polygon(punched_face(r_.member(shade, path, "geometry"), path + ".geometry"), shade, path, use(modifier, path), false, false);
     if (state) read_state_shades(*state, path + ".properties.radiance.states[0]");
+  }
+
+  // The first state of a dynamic group (an object's properties.radiance naming a
+  // dynamic_group_identifier and listing states), else null.
+  static const json* first_state(const json& radiance) {
+    const json& states = Reader::optional(radiance, "states");
+    if (Reader::optional(radiance, "dynamic_group_identifier").is_null() || !states.is_array() || states.empty()) return nullptr;
+    return &states[0];
   }
 
   // The holes of a Face3D (`path` names it), as given.
