@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -119,6 +120,21 @@ int run_df(DfOptions opt) {
   // the radiosity is one solution for the whole model, whose mesh (its automatic element size,
   // the surface sides left out) depends on every grid's sensors, so it is not sharded.
   if (!mpi::root()) return 0;
+
+  // Apertures that every sensor sees only enclosed space through: a window between two rooms that
+  // nothing marks as interior (a Honeybee folder files such windows in scene/, beside exterior glass
+  // shades, where the HBJSON says Surface and its reader refuses the model). Zeros are then the
+  // answer, but not one to give without a word.
+  const bool sky_seen = std::any_of(reports.begin(), reports.end(), [](const GridReport& r) {
+    return std::any_of(r.sc_percent.begin(), r.sc_percent.end(), [](double v) { return v > 0; });
+  });
+  if (!sky_seen && !reports.empty()) {
+    model.scene.notices.push_back(
+        "no sensor sees the sky through any of the " + std::to_string(scene.apertures.size()) +
+        " apertures: each one's outside is closed by the model's surfaces, or lies behind every sensor, so every "
+        "sky component is 0. A window between rooms taken for an opening to the sky?");
+    if (!opt.quiet) std::cerr << "notice: " << model.scene.notices.back() << '\n';
+  }
 
   // ---- Reflected components (DESIGN.md §4), over all grids at once: one radiosity solution.
   std::optional<ReflectionResult> reflections;

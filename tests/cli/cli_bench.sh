@@ -204,8 +204,8 @@ PY
 
 # `daylit bench reflections --quick`: a row for every case, N and B, with finite errors and times;
 # on the closed-form cases the error falls from N = 16 to 256 and stays within 5 standard errors
-# (seeded, so deterministic); in the side-lit room one bounce misses most of the IRC (truncation
-# error over 3 times that of B = 8); the references per sensor add up (DF = SC + ERC + IRC).
+# (seeded, so deterministic); in the side-lit room the runs' errors are their truncation and noise
+# (below); the references per sensor add up (DF = SC + ERC + IRC).
 start=$SECONDS
 "$daylit" bench reflections --quick --quiet --samples "$(dirname "$0")/../../samples" --out "$out" || fail "bench reflections: exit status $?"
 echo "bench reflections --quick: $((SECONDS - start)) s"
@@ -245,9 +245,40 @@ report=$(awk -F, -v finite="$finite" 'NR > 1 {
       if (!(err[c ",256," bmax] < 5 * se[c ",256," bmax])) print c ": error " err[c ",256," bmax] " beyond 5 sigma " se[c ",256," bmax]
     }
     if (ref["room_4x5x3"] !~ /^path tracer/) print "room_4x5x3: reference " ref["room_4x5x3"]
-    if (!(err["room_4x5x3,256,1"] > 3 * err["room_4x5x3,256," bmax])) print "room_4x5x3: one bounce is not worse than " bmax
   }' "$csv")
 [ -z "$report" ] || fail "$report"
+# The side-lit room has no closed form: its reference is a long path-traced run (B = 8) with its
+# standard errors and the IRC it carries per bounce. Beyond the first bounce lies about half of
+# the IRC there (well above the reference's noise), and each short run's error is what its
+# truncation and its noise allow: for B = 1, the RMS of (truncated part + noise) lies within the
+# RMS noise of the RMS truncated part (the triangle inequality), taken 5 standard errors wide; for
+# B = 8 (the reference's own truncation) the error is noise alone. The standard errors, not a
+# ratio of two noisy errors, set the margins: the path tracer's sample path changes with the
+# last bit of a libm result (another compiler or optimisation level), and its standard errors
+# with it (0.046 and 0.23 per cent at N = 256, B = 1, measured at -O3 and -O1).
+python3 - "$csv" "$out/reflections_reference.csv" "$out/reflections_reference_bounces.csv" <<'PY' || fail "bench reflections: room_4x5x3 against its reference"
+import csv, math, sys
+runs = {(r["samples"], r["bounces"]): r for r in csv.DictReader(open(sys.argv[1]))
+        if r["case"] == "room_4x5x3" and r["method"] == "path_tracer"}
+reference = [r for r in csv.DictReader(open(sys.argv[2])) if r["case"] == "room_4x5x3"]
+bounces = [r for r in csv.DictReader(open(sys.argv[3])) if r["case"] == "room_4x5x3"]
+rms = lambda values: math.sqrt(sum(v * v for v in values) / len(values))
+reference_noise = rms([math.hypot(float(r["erc_se"]), float(r["irc_se"])) for r in reference])
+beyond = {}
+for r in bounces:
+    if int(r["bounce"]) >= 2:
+        beyond[r["index"]] = beyond.get(r["index"], 0) + float(r["erc_percent"]) + float(r["irc_percent"])
+irc = sum(float(r["irc_percent"]) for r in reference)
+assert len(beyond) == len(reference) == 20, (len(beyond), len(reference))
+assert sum(beyond.values()) > 0.4 * irc, ("beyond the first bounce", sum(beyond.values()), "of the IRC", irc)
+truncated = rms(list(beyond.values()))
+assert truncated > 20 * reference_noise, (truncated, reference_noise)
+one, eight = runs[("256", "1")], runs[("256", "8")]
+error, noise = float(one["reflected_rms_error_percent"]), float(one["standard_error_rms_percent"])
+assert abs(error - truncated) <= 5 * (noise + reference_noise), ("B = 1", error, "truncation", truncated, noise, reference_noise)
+error, noise = float(eight["reflected_rms_error_percent"]), float(eight["standard_error_rms_percent"])
+assert error <= 5 * (noise + reference_noise), ("B = 8", error, noise, reference_noise)
+PY
 report=$(awk -F, 'NR > 1 {
     n++
     d = $9 + $11 + $13 - $15; if (d < 0) d = -d

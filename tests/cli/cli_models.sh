@@ -28,6 +28,28 @@ fi
 printf '2 2 100 0 0 1\n3 2 100 0 0 1\n' > down.pts
 "$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --grid down.pts --out down.csv 2> stderr.txt
 if ! grep -q "every sensor of grid 'down' faces away from every aperture" stderr.txt; then echo "FAIL no notice for a grid facing away"; failures=$((failures + 1)); fi
+# A closed box whose only glass is a partition inside it (as a Honeybee folder files a window
+# between two rooms, in scene/ with nothing marking it interior): zeros, and a notice saying why.
+cat > closed.rad <<'RAD'
+void plastic wall 0 0 5 .5 .5 .5 0 0
+void glass partition 0 0 3 .96 .96 .96
+wall polygon floor 0 0 12 0 0 0 4 0 0 4 4 0 0 4 0
+wall polygon ceiling 0 0 12 0 0 3 0 4 3 4 4 3 4 0 3
+wall polygon south 0 0 12 0 0 0 0 0 3 4 0 3 4 0 0
+wall polygon north 0 0 12 0 4 0 4 4 0 4 4 3 0 4 3
+wall polygon west 0 0 12 0 0 0 0 4 0 0 4 3 0 0 3
+wall polygon east 0 0 12 4 0 0 4 0 3 4 4 3 4 4 0
+partition polygon pane 0 0 12 2 1 1 2 3 1 2 3 2 2 1 2
+RAD
+printf '1 2 0.8 0 0 1\n1 2 1.5 1 0 0\n' > closed.pts
+"$daylit" df --components sc --scene closed.rad --grid closed.pts --out closed.csv --summary closed.json 2> stderr.txt
+if [ $? -ne 0 ] || [ "$(cut -d, -f10 closed.csv | sed 1d | sort -u)" != 0 ] ||
+   ! grep -q "no sensor sees the sky through any of the 1 apertures" stderr.txt ||
+   ! grep -q "no sensor sees the sky" closed.json; then
+  echo "FAIL no notice when no sensor sees the sky"; cat stderr.txt; failures=$((failures + 1))
+fi
+# ... and none where sensors see the sky (the model's own grids, first run above).
+if grep -q "no sensor sees the sky" summary.json; then echo "FAIL notice of no sky where sensors see it"; failures=$((failures + 1)); fi
 "$daylit" illuminance --components sc --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < lux.csv)" -ne 401 ]; then echo "FAIL illuminance --model"; failures=$((failures + 1)); fi
 
