@@ -139,14 +139,23 @@ PanesThrough panes_through(const Scene& scene, std::size_t aperture, const Spher
   return out;
 }
 
-double transmittance_along(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes, const Vec3& u) {
-  const auto one = [&](const Aperture& a) {
-    return a.angular_transmittance.empty() ? a.transmittance
-                                           : evaluate_polynomial(a.angular_transmittance, std::abs(dot(pane_axis(a), u)));
+TransmittanceAlong::TransmittanceAlong(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes) {
+  const auto add = [&](const Aperture& a) {
+    if (a.angular_transmittance.empty()) constant_ *= a.transmittance;
+    else factors_.push_back({pane_axis(a), &a.angular_transmittance});
   };
-  double t = one(scene.apertures.at(aperture));
-  for (std::uint32_t b : panes) t *= one(scene.apertures.at(b));
+  add(scene.apertures.at(aperture));
+  for (std::uint32_t b : panes) add(scene.apertures.at(b));
+}
+
+double TransmittanceAlong::operator()(const Vec3& u) const noexcept {
+  double t = constant_;
+  for (const Factor& f : factors_) t *= evaluate_polynomial(*f.angular, std::abs(dot(f.axis, u)));
   return t;
+}
+
+double transmittance_along(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes, const Vec3& u) {
+  return TransmittanceAlong(scene, aperture, panes)(u);
 }
 
 }  // namespace daylit

@@ -52,8 +52,24 @@ struct PaneTerm {
 };
 std::vector<PaneTerm> pane_terms(const Scene& scene, std::size_t aperture, const PaneView& view);
 
-// The transmittance along one direction u through the aperture and the panes, exactly: each
-// pane's T at its own cosine of incidence |w·u| (the sun's centre, where the direction is known).
+// The transmittance along a direction u through the aperture and the panes, exactly: each pane's
+// T at its own cosine of incidence |w·u| (the sun's centre, where the direction is known; every
+// direction of a cubature). The panes' normals are found once, at construction (a 361-gon's
+// Newell normal per evaluation was 93 % of a cubature's time).
+class TransmittanceAlong {
+ public:
+  TransmittanceAlong(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes);
+  double operator()(const Vec3& u) const noexcept;
+
+ private:
+  struct Factor {
+    Vec3 axis;                                  // the pane's unit normal
+    const std::vector<double>* angular;         // T(μ)'s coefficients; null: constant
+  };
+  double constant_ = 1;
+  std::vector<Factor> factors_;
+};
+
 double transmittance_along(const Scene& scene, std::size_t aperture, const std::vector<std::uint32_t>& panes, const Vec3& u);
 
 }  // namespace daylit

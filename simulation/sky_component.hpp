@@ -16,8 +16,10 @@ struct SkyComponentResult {
   std::vector<double> sc_percent;  // per sensor, in grid order
   std::vector<Vec3> sc_gradient;   // per sensor when asked for: ∇_p SC, percent per model unit
   VisibilityCounters counters;
-  // The largest bound over the sensors (DF points) of what taking panes not parallel to the
-  // aperture as constant over a region may cost (pane_transmittance.hpp); 0 when exact.
+  // The largest over the sensors (DF points) of what the regions seen through glass panes not
+  // parallel to the aperture may be off by: the adaptive cubature's error estimate where they are
+  // integrated with each pane's T at its own cosine, plus the constant-T bound of the small
+  // regions kept in closed form (sky_component.cpp, kPaneBoundKept); 0 where none is.
   double pane_bound_percent = 0;
 };
 

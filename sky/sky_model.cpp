@@ -50,6 +50,10 @@ double sky_irradiance_through_glazing(const SphericalRegion& region, const Vec3&
   return sky == SkyModel::uniform ? m.cosine : (m.cosine + 2 * m.cosine_linear) / 3;
 }
 
+double sky_relative_luminance(SkyModel sky, const Vec3& u) noexcept {
+  return sky == SkyModel::cie_overcast ? (1 + 2 * u.z) / 3 : 1.0;
+}
+
 double unobstructed_horizontal_irradiance(SkyModel sky) noexcept {
   return sky == SkyModel::cie_overcast ? 7 * std::numbers::pi / 9 : std::numbers::pi;
 }

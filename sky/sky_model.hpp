@@ -46,6 +46,10 @@ double sky_irradiance(const SphericalRegion& region, const Vec3& n, SkyModel sky
 double sky_irradiance_through_glazing(const SphericalRegion& region, const Vec3& n, SkyModel sky, Vec3 a,
                                       const std::vector<double>& c);
 
+// The luminance of direction u in the same units: (1 + 2 u_z)/3 overcast, 1 uniform (for the
+// integrands that are not closed forms: sky_quadrature.hpp).
+double sky_relative_luminance(SkyModel sky, const Vec3& u) noexcept;
+
 // Unobstructed horizontal illuminance in the same units: 7π/9 for the overcast sky, π for the
 // uniform sky (SKY.md).
 double unobstructed_horizontal_irradiance(SkyModel sky) noexcept;

@@ -1,8 +1,8 @@
 // Panes one behind another (VisibilityEngine with AperturesAre::panes): an interior glass
 // partition in front of a window, a glass-modified tree beyond it. Light that passes several panes
 // must be counted once, with the product of their transmittances, against long-double quadrature
-// over the window of L·cos·T₁·T₂, and the stated bound must hold where a tilted pane's
-// transmittance is taken as constant over the region.
+// over the window of L·cos·T₁·T₂, also where a tilted pane's transmittance varies over the region
+// by another cosine than the window's (integrated by cubature, to its stated estimate).
 
 #include <catch2/catch.hpp>
 
@@ -131,7 +131,7 @@ TEST_CASE("panes: two parallel glass panes give the product of their transmittan
   CHECK(relative_error(value, reference) < 1e-3);
 }
 
-TEST_CASE("panes: a tilted glass pane is taken as constant over the region, within the stated bound") {
+TEST_CASE("panes: behind a tilted glass pane each direction takes each pane's transmittance, to the cubature's estimate") {
   Scene scene;
   scene.apertures.push_back(glass_pane(window, 0.96));
   scene.apertures.push_back(glass_pane(pane_at(0.3, 0.8), 0.96));  // tilted about x by 39°
@@ -158,6 +158,10 @@ TEST_CASE("panes: a tilted glass pane is taken as constant over the region, with
                 << " bound " << bound);
   // The cut at the window's plane is rounded (its vertices within an ulp of it): 1e-9 covers it.
   CHECK(std::abs(both - pane - double(reference)) <= bound + 1e-9 * both);
+  // The cubature's estimate is what its tolerance (1e-6 relative, sky_component.cpp) promises of
+  // the terms it integrates (each at most `pane`): taking the tilted pane as constant over the
+  // region instead, as before, gave a bound of 1.8e-2 DF points here (its error 3.5e-4).
+  CHECK(bound <= 1e-6 * 2 * pane);
 }
 
 TEST_CASE("panes: the sun through a tilted pane and a window takes each pane's transmittance at the sun") {
