@@ -291,10 +291,6 @@ Walk walk(const TracerScene& s, const Vec3& o, const Vec3& d, std::uint32_t from
   }
 }
 
-double sky_luminance(SkyModel sky, const Vec3& d) noexcept {
-  return sky == SkyModel::cie_overcast ? (1 + 2 * d.z) / 3 : 1.0;
-}
-
 // Cosine-distributed direction about the unit normal n from (ξ1, ξ2) ∈ [0, 1)² (Malley's method).
 Vec3 cosine_direction(const Vec3& n, double xi1, double xi2) noexcept {
   Vec3 e1, e2;
@@ -325,7 +321,7 @@ class Tracer {
   Tracer(const TracerScene& s, const PathTracerOptions& o)
       : s_(s), o_(o), ground_(o.ground_reflectance * unobstructed_horizontal_irradiance(o.sky) / kPi) {}
 
-  double environment(const Vec3& d) const noexcept { return d.z > 0 ? sky_luminance(o_.sky, d) : (d.z < 0 ? ground_ : 0.0); }
+  double environment(const Vec3& d) const noexcept { return d.z > 0 ? sky_relative_luminance(o_.sky, d) : (d.z < 0 ? ground_ : 0.0); }
 
   // Solid-angle density with which next-event estimation draws direction d from x, d crossing
   // aperture a first at distance t.

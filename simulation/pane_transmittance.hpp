@@ -63,10 +63,10 @@ class TransmittanceAlong {
 
  private:
   struct Factor {
-    Vec3 axis;                                  // the pane's unit normal
-    const std::vector<double>* angular;         // T(μ)'s coefficients; null: constant
+    Vec3 axis;                           // the pane's unit normal
+    const std::vector<double>* angular;  // T(μ)'s coefficients
   };
-  double constant_ = 1;
+  double constant_ = 1;  // the product of the constant transmittances
   std::vector<Factor> factors_;
 };
 

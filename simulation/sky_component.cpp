@@ -39,6 +39,26 @@ Error non_finite(const Sensor& sensor) {
                ") with float geometry; use --geometry exact");
 }
 
+// The sky irradiance a PaneTerm gives over its region, before its sign, from the closed form
+// `closed` of its combined aperture; what it may be off by is added to `bound`. A glass pane not
+// parallel to the aperture makes the product of transmittances a polynomial in two cosines of
+// incidence, which the moments about one axis do not take, and taking one factor as constant over
+// the region cost up to 9 % (tilted tree-crown panes): there each direction takes every pane's T
+// at its own cosine, integrated by adaptive cubature to kPaneTolerance, whose error estimate is
+// the bound. (The cubature needs a sun to split at; these skies have none, so the zenith serves.)
+double pane_term_irradiance(const Scene& scene, const Sensor& sensor, SkyModel sky, const SphericalRegion& region,
+                            const PaneTerm& term, double closed, double& bound) {
+  if (term.transmittance.spread * std::abs(closed) <= kPaneBoundKept) {
+    bound += term.transmittance.spread * std::abs(closed);
+    return closed;
+  }
+  const TransmittanceAlong transmittance(scene, term.aperture, term.panes);
+  const QuadratureResult q = sky_irradiance_quadrature([&](const Vec3& u) { return sky_relative_luminance(sky, u); },
+                                                       Vec3{0, 0, 1}, region, sensor.normal, kPaneTolerance, transmittance);
+  bound += q.error_estimate;
+  return q.value;
+}
+
 }  // namespace
 
 SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
@@ -53,35 +73,40 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
     L.alpha = 1.0 / 3;
     L.beta = {0, 0, 2.0 / 3};
   }
-  const auto add = [&](const SphericalRegion& region, const Aperture& aperture, double sign = 1) {
-    const double irradiance_before = irradiance;
-    const Vec3 gradient_before = gradient;
+  // A region's part, negated for a count taken back (PaneView, sign −1). The irradiance of a pane
+  // term is sky_component_percent's (pane_term_irradiance); its gradient takes the combined
+  // aperture's closed form (a pane at another angle as constant over the region).
+  double unused_bound = 0;
+  const auto add = [&](const SphericalRegion& region, const Aperture& aperture, double sign = 1,
+                       const PaneTerm* term = nullptr) {
+    double e;
+    Vec3 g;
     if (aperture.angular_transmittance.empty()) {
-      irradiance += aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
+      e = aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
       L.c = {1};
-      gradient += aperture.transmittance *
-                  directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
+      g = aperture.transmittance *
+          directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
     } else {
       // The pane's normal turned to face the region, as sky_irradiance_through_glazing does.
       Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
       Vec3 inside{};
       for (const Vec3& u : region.loops.front()) inside += normalized(u);
       if (dot(pane, inside) < 0) pane = -1.0 * pane;
-      irradiance += sky_irradiance_through_glazing(region, sensor.normal, sky, pane, aperture.angular_transmittance);
+      e = sky_irradiance_through_glazing(region, sensor.normal, sky, pane, aperture.angular_transmittance);
       L.axis = pane;
       L.c = aperture.angular_transmittance;
-      gradient += directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
+      g = directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
     }
-    if (sign != 1) {  // a count taken back (PaneView): the region's part enters negated
-      irradiance = irradiance_before + sign * (irradiance - irradiance_before);
-      gradient = gradient_before + sign * (gradient - gradient_before);
-    }
+    if (term) e = pane_term_irradiance(scene, sensor, sky, region, *term, e, unused_bound);
+    irradiance += sign * e;
+    gradient += sign * g;
   };
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters, options);
     if (!view.region.empty()) add(view.region, scene.apertures[a]);
     for (const PaneView& behind : view.behind)
-      for (const PaneTerm& term : pane_terms(scene, a, behind)) add(behind.region, term.transmittance.combined, term.sign);
+      for (const PaneTerm& term : pane_terms(scene, a, behind))
+        add(behind.region, term.transmittance.combined, term.sign, &term);
   }
   // The same expression as sky_component_percent's, so that the two agree to the last bit.
   const double e_out = unobstructed_horizontal_irradiance(sky);
@@ -102,25 +127,9 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
     if (!view.region.empty()) irradiance += through(view.region, scene.apertures[a]);
     for (const PaneView& behind : view.behind)
-      for (const PaneTerm& term : pane_terms(scene, a, behind)) {
-        const double e = through(behind.region, term.transmittance.combined);
-        if (term.transmittance.spread * std::abs(e) <= kPaneBoundKept) {
-          irradiance += term.sign * e;
-          bound += term.transmittance.spread * std::abs(e);
-          continue;
-        }
-        // A glass pane not parallel to the aperture: the product of transmittances is then a
-        // polynomial in two cosines of incidence, which the moments about one axis do not take, and
-        // taking one factor as constant over the region cost up to 9 % (tilted tree-crown panes).
-        // Each direction takes every pane's T at its own cosine, integrated by adaptive cubature to
-        // kPaneTolerance; its error estimate is what pane_bound_percent reports.
-        const TransmittanceAlong transmittance(scene, term.aperture, term.panes);
-        const QuadratureResult q = sky_irradiance_quadrature([&](const Vec3& u) { return sky_relative_luminance(sky, u); },
-                                                             Vec3{0, 0, 1}, behind.region, sensor.normal, kPaneTolerance,
-                                                             transmittance);
-        irradiance += term.sign * q.value;
-        bound += q.error_estimate;
-      }
+      for (const PaneTerm& term : pane_terms(scene, a, behind))
+        irradiance += term.sign * pane_term_irradiance(scene, sensor, sky, behind.region, term,
+                                                       through(behind.region, term.transmittance.combined), bound);
   }
   const double e_out = unobstructed_horizontal_irradiance(sky);
   const double percent = 100 * irradiance / e_out;
