@@ -16,6 +16,7 @@
 
 #include "geometry/error.hpp"
 #include "illumination/cap_clip.hpp"
+#include "illumination/fan_product_rule.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "simulation/annual_reflections.hpp"
@@ -71,29 +72,13 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   CircumsolarRule rule;
   rule.regions = coefficients.regions.size();
   for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
-    const quadrature::GaussLegendreRule gl = quadrature::gauss_legendre(order);
+    const quadrature::UnitGaussRule gl = quadrature::gauss_legendre_unit(order);
     std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
     for (const SeenRegion& seen : coefficients.regions) {
       const Aperture& aperture = seen.transmitting(scene);
-      for (const DirectionLoop& loop : seen.region.loops) {
-        for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-          const Vec3 A = loop[0], ab = loop[i] - A, ac = loop[i + 1] - A;
-          const double det = dot(A, cross(ab, ac));
-          if (det == 0) continue;
-          for (int p = 0; p < order; ++p) {
-            const double x = double((gl.x[std::size_t(p)] + 1) / 2), wx = double(gl.w[std::size_t(p)] / 2);
-            for (int q = 0; q < order; ++q) {
-              const double y = double((gl.x[std::size_t(q)] + 1) / 2), wy = double(gl.w[std::size_t(q)] / 2);
-              // Duffy's collapse of the fan triangle, as annual_coefficients.cpp integrates the moments.
-              const Vec3 point = A + (x * (1 - y)) * ab + (x * y) * ac;
-              const double r = norm(point);
-              const Vec3 u = (1 / r) * point;
-              nodes.push_back({u, seen.sign * wx * wy * x * det / (r * r * r) * dot(sensor.normal, u) *
-                                      aperture_transmittance(aperture, u)});
-            }
-          }
-        }
-      }
+      for_each_fan_node(seen.region, gl, kCircumsolarMaxSide, [&](const Vec3& u, double area) {
+        nodes.push_back({u, seen.sign * area * dot(sensor.normal, u) * aperture_transmittance(aperture, u)});
+      });
     }
   }
   return rule;

@@ -160,7 +160,8 @@ struct HourIlluminance {
 };
 
 // Fixed product Gauss rules (kCircumsolarOrderHigh² and kCircumsolarOrderLow² points per fan
-// triangle, as the moments) over a sensor's regions, with (n·u) T(u) in the weights: built once
+// triangle, split to sides of at most kCircumsolarMaxSide as the moments are: fan_product_rule.hpp)
+// over a sensor's regions, with (n·u) T(u) in the weights: built once
 // per sensor, they integrate the hour's circumsolar term c·G(u_z)·e^{dγ} as two sums. An hour takes
 // the high rule's sum when the two agree to the circumsolar tolerance (their difference is its
 // error estimate) and the sky's sun is more than kCircumsolarMargin from every region (so the kink
@@ -170,6 +171,10 @@ struct HourIlluminance {
 // adaptive cubature over the Chicago year, so it is not used.)
 inline constexpr int kCircumsolarOrderHigh = 12, kCircumsolarOrderLow = 8;
 inline constexpr double kCircumsolarMargin = 5 * 3.14159265358979323846 / 180;
+// 1 rad: on the room sample (40 sensors, Chicago year) the sensor-hours sent to adaptive cubature
+// fell from 120,569 (unsplit) to 48,390, most of the rest with the sun within the margin; 0.7 rad
+// took 45,006 but more nodes per hour.
+inline constexpr double kCircumsolarMaxSide = 1.0;
 struct CircumsolarRule {
   struct Node {
     Vec3 u;

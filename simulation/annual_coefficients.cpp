@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "illumination/fan_product_rule.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "simulation/pane_transmittance.hpp"
@@ -34,34 +35,17 @@ void evaluate_basis(const Vec3& u, int degree, double* out) {
 }
 
 // Σ over the region of φ_j(u) T(u) (n·u) dσ and of T(u)(n·u) dσ, by the n×n collapsed product rule
-// on every fan triangle (signed, so holes and non-convex loops add up as in spherical_quadrature).
+// on the region's fan triangles split to sides of at most kMomentMaxSide (fan_product_rule.hpp).
 void integrate_basis(const SphericalRegion& region, const Vec3& n, const Aperture& aperture, int degree,
                      const UnitRule& rule, double* moments, double& lambert) {
   std::vector<double> phi(std::size_t(annual_basis_size(degree)));
   const int size = annual_basis_size(degree);
-  for (const DirectionLoop& loop : region.loops) {
-    if (loop.size() < 3) continue;
-    const Vec3& a = loop[0];
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      const Vec3 ab = loop[i] - a, ac = loop[i + 1] - a;
-      const double det = dot(a, cross(ab, ac));
-      if (det == 0) continue;
-      for (std::size_t p = 0; p < rule.x.size(); ++p) {
-        const double x = rule.x[p];
-        for (std::size_t q = 0; q < rule.x.size(); ++q) {
-          const double y = rule.x[q];
-          // Duffy's collapse: α = x(1 − y), β = x y, dα dβ = x dx dy.
-          const Vec3 point = a + (x * (1 - y)) * ab + (x * y) * ac;
-          const double r = norm(point);
-          const Vec3 u = (1 / r) * point;
-          const double weight = rule.w[p] * rule.w[q] * x * det / (r * r * r) * dot(n, u) * aperture_transmittance(aperture, u);
-          lambert += weight;
-          evaluate_basis(u, degree, phi.data());
-          for (int j = 0; j < size; ++j) moments[j] += weight * phi[std::size_t(j)];
-        }
-      }
-    }
-  }
+  for_each_fan_node(region, rule, kMomentMaxSide, [&](const Vec3& u, double area) {
+    const double weight = area * dot(n, u) * aperture_transmittance(aperture, u);
+    lambert += weight;
+    evaluate_basis(u, degree, phi.data());
+    for (int j = 0; j < size; ++j) moments[j] += weight * phi[std::size_t(j)];
+  });
 }
 
 // Extend [lo, hi] by the range of z·u over the region's arcs: z·u(t) = A cos t + B sin t on
