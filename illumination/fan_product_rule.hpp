@@ -14,7 +14,9 @@
 // 8e-15). So each triangle is first split at its arcs' midpoints
 // (four spherical triangles that tile it exactly) until no side exceeds `max_side`: with sides of
 // angle s, |p| ≥ cos(s/√3) over the planar triangle, and the Jacobian varies by less than a factor
-// cos(s/√3)^−3 (1.7 for s = 1 rad).
+// cos(s/√3)^−3 (1.7 for s = 1 rad). Used by the annual moments and circumsolar rules
+// (annual_coefficients.hpp, annual.hpp) and the reflection operator's hat functions
+// (annual_reflections.hpp), each with its own `max_side`.
 
 #include <cmath>
 #include <cstddef>

@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "illumination/cap_clip.hpp"
+#include "illumination/fan_product_rule.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/pane_transmittance.hpp"
@@ -39,33 +40,6 @@ using Rule = quadrature::UnitGaussRule;
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 
-// Calls point(u, weight) for the product rule on the planar triangle (a, b, c) centrally projected
-// (Duffy's collapse, as annual_coefficients.cpp), weight = dσ; the triangle is cut into four at its
-// sides' midpoints (the same projected region) while a side spans more than `max_angle`.
-template <class Point>
-void triangle_rule(const Vec3& a, const Vec3& b, const Vec3& c, const Rule& rule, double max_angle, int depth,
-                   Point&& point) {
-  const double widest = std::max({angle_between(a, b), angle_between(b, c), angle_between(c, a)});
-  if (widest > max_angle && depth > 0) {
-    const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-    triangle_rule(a, ab, ca, rule, max_angle, depth - 1, point);
-    triangle_rule(ab, b, bc, rule, max_angle, depth - 1, point);
-    triangle_rule(ca, bc, c, rule, max_angle, depth - 1, point);
-    triangle_rule(ab, bc, ca, rule, max_angle, depth - 1, point);
-    return;
-  }
-  const Vec3 e1 = b - a, e2 = c - a;
-  const double det = dot(a, cross(e1, e2));
-  if (det == 0) return;
-  for (std::size_t p = 0; p < rule.x.size(); ++p)
-    for (std::size_t q = 0; q < rule.x.size(); ++q) {
-      const double x = rule.x[p], y = rule.x[q];
-      const Vec3 v = a + (x * (1 - y)) * e1 + (x * y) * e2;
-      const double r = norm(v);
-      point((1 / r) * v, rule.w[p] * rule.w[q] * x * det / (r * r * r));
-    }
-}
-
 // The columns of every node of an operator.
 std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperator& op, const DirectionGrid& fine,
                                       const DirectionGrid& coarse, const std::vector<int>& group_of_aperture, std::size_t groups,
@@ -87,21 +61,19 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
       row[columns.ground_at()] += view.sign * view.ground;
       if (view.above.empty()) continue;
       // The sky: the hat functions of both grids.
-      for (const DirectionLoop& loop : view.above.loops)
-        for (std::size_t i = 1; i + 1 < loop.size(); ++i)
-          triangle_rule(loop[0], loop[i], loop[i + 1], rule, max_angle, 6, [&](const Vec3& u, double dsigma) {
-            const double w = dsigma * dot(node.normal, u) * transmittance(u);
-            // The direction's altitude and azimuth once, for both grids.
-            const double alt = std::asin(std::clamp(u.z, 0.0, 1.0));
-            double az = std::atan2(u.y, u.x);
-            if (az < 0) az += 2 * kPi;
-            std::size_t v[4];
-            double f[4];
-            fine.interpolation_at(alt, az, v, f);
-            for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
-            coarse.interpolation_at(alt, az, v, f);
-            for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
-          });
+      for_each_fan_node(view.above, rule, max_angle, [&](const Vec3& u, double dsigma) {
+        const double w = dsigma * dot(node.normal, u) * transmittance(u);
+        // The direction's altitude and azimuth once, for both grids.
+        const double alt = std::asin(std::clamp(u.z, 0.0, 1.0));
+        double az = std::atan2(u.y, u.x);
+        if (az < 0) az += 2 * kPi;
+        std::size_t v[4];
+        double f[4];
+        fine.interpolation_at(alt, az, v, f);
+        for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
+        coarse.interpolation_at(alt, az, v, f);
+        for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
+      });
     }
     NodeColumns& entries = out[k];
     for (std::size_t c = 0; c < total; ++c)

@@ -10,7 +10,7 @@
 //           azimuth in the model frame, DirectionGrid), so ∫ L T (n·u) dσ ≈ Σ_b q_b L(d_b) with
 //           q_b = ∫ φ_b T (n·u) dσ, φ_b the grid's hat functions, integrated by a product Gauss
 //           rule on the view's fan triangles, each cut until no side spans more than
-//           kReflectionTriangleDeg;
+//           kReflectionTriangleDeg (fan_product_rule.hpp);
 //   sun:    per hour, exact: the disk cut by each view's region (cap_lambert), glass's T at its
 //           centre;
 //   ground: the view's far-ground integral, exact (LightView::ground).
