@@ -63,8 +63,7 @@ double direct_sun_lux(const Scene& scene, const SeenRegion& seen, const Vec3& n,
   const double sin_rho = std::sin(rho);
   // Snyder 1996, eq. 6 (as simulation/illuminance.cpp): L_s = E_dn / (π sin²ρ); glass's T at the
   // disk's centre (through panes in front: each pane's at the sun).
-  const double t = seen.panes.empty() && !seen.through ? aperture_transmittance(scene.apertures[std::size_t(seen.aperture)], sun)
-                                                       : transmittance_along(scene, std::size_t(seen.aperture), seen.panes, sun);
+  const double t = SeenTransmittance(scene, seen)(sun);
   return seen.sign * t * direct_normal_lux / (std::numbers::pi * sin_rho * sin_rho) * visible;
 }
 
@@ -75,9 +74,9 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
     const quadrature::UnitGaussRule gl = quadrature::gauss_legendre_unit(order);
     std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
     for (const SeenRegion& seen : coefficients.regions) {
-      const Aperture& aperture = seen.transmitting(scene);
+      const SeenTransmittance transmittance(scene, seen);
       for_each_fan_node(seen.region, gl, kCircumsolarMaxSide, [&](const Vec3& u, double area) {
-        nodes.push_back({u, seen.sign * area * dot(sensor.normal, u) * aperture_transmittance(aperture, u)});
+        nodes.push_back({u, seen.sign * area * dot(sensor.normal, u) * transmittance(u)});
       });
     }
   }
@@ -231,18 +230,15 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
     }
   }
   for (const SeenRegion& seen : coefficients.regions) {
-    const Aperture& aperture = seen.transmitting(scene);
     const SphericalRegion& region = seen.region;
     if (!fixed) {
-      // T(μ) about the pane's normal, found once per region rather than per evaluation; an open
-      // aperture's constant τ scales the result instead.
+      // An open aperture's constant τ scales the result; else T along each direction (through
+      // panes: each pane's at its own cosine, SeenTransmittance).
+      const SeenTransmittance along(scene, seen);
       std::function<double(const Vec3&)> transmittance;
-      double scale = aperture.transmittance;
-      if (!aperture.angular_transmittance.empty()) {
-        const Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
-        transmittance = [&aperture, pane](const Vec3& u) {
-          return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
-        };
+      double scale = along.value();
+      if (!along.constant()) {
+        transmittance = [&along](const Vec3& u) { return along(u); };
         scale = 1;
       }
       const QuadratureResult q =
@@ -258,10 +254,6 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
     if (hour.direct_normal_lux > 0)
       out.sun_lux += direct_sun_lux(scene, seen, sensor.normal, hour.sun, hour.direct_normal_lux);
   }
-  // A pane taken as constant over a region (pane_transmittance.hpp) costs at most its spread of
-  // what that region gives of the sky: bounded here by the spread of the whole sky (the sun takes
-  // each pane's T at the sun, exactly).
-  error += coefficients.pane_spread * std::abs(value);
   out.sky_lux = hour.scale * value;
   out.bound_lux = hour.scale * error;
   return out;

@@ -36,12 +36,12 @@ void evaluate_basis(const Vec3& u, int degree, double* out) {
 
 // Σ over the region of φ_j(u) T(u) (n·u) dσ and of T(u)(n·u) dσ, by the n×n collapsed product rule
 // on the region's fan triangles split to sides of at most kMomentMaxSide (fan_product_rule.hpp).
-void integrate_basis(const SphericalRegion& region, const Vec3& n, const Aperture& aperture, int degree,
+void integrate_basis(const SphericalRegion& region, const Vec3& n, const SeenTransmittance& transmittance, int degree,
                      const UnitRule& rule, double* moments, double& lambert) {
   std::vector<double> phi(std::size_t(annual_basis_size(degree)));
   const int size = annual_basis_size(degree);
   for_each_fan_node(region, rule, kMomentMaxSide, [&](const Vec3& u, double area) {
-    const double weight = area * dot(n, u) * aperture_transmittance(aperture, u);
+    const double weight = area * dot(n, u) * transmittance(u);
     lambert += weight;
     evaluate_basis(u, degree, phi.data());
     for (int j = 0; j < size; ++j) moments[j] += weight * phi[std::size_t(j)];
@@ -80,6 +80,24 @@ double aperture_transmittance(const Aperture& aperture, const Vec3& u) {
   return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
 }
 
+SeenTransmittance::SeenTransmittance(const Scene& scene, const SeenRegion& seen) {
+  if (seen.through) {
+    along_.emplace(scene, std::size_t(seen.aperture), seen.panes);
+    return;
+  }
+  const Aperture& aperture = scene.apertures[std::size_t(seen.aperture)];
+  constant_ = aperture.transmittance;
+  if (aperture.angular_transmittance.empty()) return;
+  axis_ = normalized(newell_normal(aperture.polygon.vertices));
+  angular_ = &aperture.angular_transmittance;
+}
+
+double SeenTransmittance::operator()(const Vec3& u) const noexcept {
+  if (along_) return (*along_)(u);
+  if (angular_ != nullptr) return evaluate_polynomial(*angular_, std::abs(dot(axis_, u)));
+  return constant_;
+}
+
 WindowGroups window_groups(const Scene& scene) {
   WindowGroups g;
   std::map<std::string, int> index;
@@ -105,20 +123,20 @@ SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Sce
     // −1 for a count taken back (PaneView).
     const auto add = [&](std::size_t own, SphericalRegion region, std::shared_ptr<const Aperture> through,
                          std::vector<std::uint32_t> panes, double sign) {
-      const Aperture& aperture = through ? *through : scene.apertures[own];
+      SeenRegion& seen = c.regions.emplace_back(SeenRegion{int(own), std::move(region), std::move(through), std::move(panes), sign});
+      const SeenTransmittance transmittance(scene, seen);
       const std::size_t gg = std::size_t(groups.group_of_aperture[own]);
       std::vector<double> moments(size, 0.0), moments_low(size, 0.0);
       double l = 0, l_low = 0;
-      integrate_basis(region, sensor.normal, aperture, degree, high, moments.data(), l);
-      integrate_basis(region, sensor.normal, aperture, degree, low, moments_low.data(), l_low);
+      integrate_basis(seen.region, sensor.normal, transmittance, degree, high, moments.data(), l);
+      integrate_basis(seen.region, sensor.normal, transmittance, degree, low, moments_low.data(), l_low);
       for (std::size_t j = 0; j < size; ++j) {
         c.sky_direct[gg * size + j] += sign * moments[j];
         coarse[gg * size + j] += sign * moments_low[j];
       }
       c.lambert[gg] += sign * l;
       coarse_lambert[gg] += sign * l_low;
-      extend_uz_range(region, c.min_uz, c.max_uz);
-      c.regions.push_back({int(own), std::move(region), std::move(through), std::move(panes), sign});
+      extend_uz_range(seen.region, c.min_uz, c.max_uz);
     };
     if (!view.region.empty()) add(a, std::move(view.region), nullptr, {}, 1.0);
     // Through panes in front as well, with their transmittances, each term in its own pane's

@@ -27,11 +27,13 @@
 
 #include <string>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "geometry/scene.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
+#include "simulation/pane_transmittance.hpp"
 #include "simulation/sky_component.hpp"
 
 namespace daylit {
@@ -65,6 +67,26 @@ struct SeenRegion {
   const Aperture& transmitting(const Scene& scene) const { return through ? *through : scene.apertures[std::size_t(aperture)]; }
 };
 
+// The transmittance of a seen region along a direction u: the aperture's τ or T(|a·u|), or, seen
+// through panes, every pane's T at its own cosine of incidence (TransmittanceAlong). Exact where
+// `through`'s combined polynomial is not: that takes a pane not parallel to the aperture as
+// constant over the region (pane_transmittance.hpp); the moments, the circumsolar term and the
+// sun of an annual run take this instead, so only the sky in patches keeps that approximation.
+class SeenTransmittance {
+ public:
+  SeenTransmittance(const Scene& scene, const SeenRegion& seen);
+  double operator()(const Vec3& u) const noexcept;
+  // The same value along every direction (an open aperture): value() then.
+  bool constant() const noexcept { return !along_ && angular_ == nullptr; }
+  double value() const noexcept { return constant_; }
+
+ private:
+  double constant_ = 1;
+  Vec3 axis_{};                                  // the glass's unit normal
+  const std::vector<double>* angular_ = nullptr;  // its T(μ)
+  std::optional<TransmittanceAlong> along_;       // through panes
+};
+
 // What one sensor sees, once.
 struct SensorCoefficients {
   // The sky seen directly through the apertures: [group][basis] (group-major).
@@ -77,7 +99,9 @@ struct SensorCoefficients {
   double min_uz = 1, max_uz = 0;
   // Largest |B_j(high) − B_j(low)| over the basis, relative to the largest lambert weight (0 if none).
   double moment_error = 0;
-  // The largest relative bound of a pane taken as constant over a region (pane_transmittance.hpp).
+  // The largest relative bound of a pane taken as constant over a region (pane_transmittance.hpp):
+  // what the sky in patches (add_patch_coefficients) carries; the exact path takes every pane's T
+  // along each direction (SeenTransmittance) and has no such term.
   double pane_spread = 0;
   // The visible regions, kept for the circumsolar term and the sun.
   std::vector<SeenRegion> regions;

@@ -10,6 +10,7 @@
 #include "illumination/moments.hpp"
 #include "simulation/pane_transmittance.hpp"
 #include "simulation/sensor_loop.hpp"
+#include "simulation/sky_component.hpp"
 
 namespace daylit {
 
@@ -25,24 +26,41 @@ struct SensorIlluminance {
 // it towards the region themselves.
 Vec3 pane_normal(const Aperture& aperture) { return normalized(newell_normal(aperture.polygon.vertices)); }
 
+// E/L_z from the sky seen in `region` by adaptive cubature of the Perez or CIE general sky's
+// relative luminance, with T along each direction (`transmittance`; where empty, the constant
+// `scale`), and the cubature's estimate as its bound.
+void add_sky_by_cubature(const DaylightConditions& c, const std::function<double(const Vec3&)>& transmittance,
+                         double scale, const SphericalRegion& region, const Vec3& n, SensorIlluminance& out) {
+  if (c.sky == DaylightConditions::Sky::perez) {
+    const QuadratureResult q = perez_sky_irradiance_quadrature(*c.perez, region, n, c.quadrature_tolerance, transmittance);
+    out.sky += scale * q.value;
+    out.sky_error += scale * q.error_estimate;
+    out.evaluations += q.evaluations;
+    return;
+  }
+  const CieQuadrature q = cie_sky_irradiance_quadrature(*c.cie, region, n, c.quadrature_tolerance, transmittance);
+  out.sky += scale * q.value;
+  out.sky_error += scale * q.error_estimate;
+  out.evaluations += q.evaluations;
+  out.regions_by_quadrature += transmittance && c.method == DaylightConditions::Method::fit;
+}
+
 // E/L_z from the sky seen in `region` through `aperture`, with a bound on its error.
 void add_sky(const DaylightConditions& c, const Aperture& aperture, const SphericalRegion& region, const Vec3& n,
              SensorIlluminance& out) {
   const bool glazed = !aperture.angular_transmittance.empty();
-  if (c.sky == DaylightConditions::Sky::perez) {
-    // The Perez sky: adaptive cubature of its relative luminance (L/L_z), through glass with T(μ).
-    std::function<double(const Vec3&)> transmittance;
-    if (glazed) {
-      const Vec3 a = pane_normal(aperture);
-      transmittance = [&aperture, a](const Vec3& u) {
-        return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
-      };
-    }
-    const QuadratureResult q = perez_sky_irradiance_quadrature(*c.perez, region, n, c.quadrature_tolerance, transmittance);
-    const double scale = glazed ? 1.0 : aperture.transmittance;
-    out.sky += scale * q.value;
-    out.sky_error += scale * q.error_estimate;
-    out.evaluations += q.evaluations;
+  // Glass's T(μ) about the pane's normal, for the skies integrated by cubature.
+  std::function<double(const Vec3&)> transmittance;
+  if (glazed) {
+    const Vec3 a = pane_normal(aperture);
+    transmittance = [&aperture, a](const Vec3& u) {
+      return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
+    };
+  }
+  const double scale = glazed ? 1.0 : aperture.transmittance;
+  if (c.sky == DaylightConditions::Sky::perez ||
+      (c.sky == DaylightConditions::Sky::cie_general && (glazed || c.method == DaylightConditions::Method::quadrature))) {
+    add_sky_by_cubature(c, transmittance, scale, region, n, out);
     return;
   }
   if (c.sky != DaylightConditions::Sky::cie_general) {
@@ -52,26 +70,31 @@ void add_sky(const DaylightConditions& c, const Aperture& aperture, const Spheri
                       : aperture.transmittance * sky_irradiance(region, n, model);
     return;
   }
-  if (glazed || c.method == DaylightConditions::Method::quadrature) {
-    std::function<double(const Vec3&)> transmittance;
-    if (glazed) {
-      const Vec3 a = pane_normal(aperture);
-      transmittance = [&aperture, a](const Vec3& u) {
-        return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(a, u)));
-      };
-    }
-    const CieQuadrature q = cie_sky_irradiance_quadrature(*c.cie, region, n, c.quadrature_tolerance, transmittance);
-    const double scale = glazed ? 1.0 : aperture.transmittance;
-    out.sky += scale * q.value;
-    out.sky_error += scale * q.error_estimate;
-    out.evaluations += q.evaluations;
-    out.regions_by_quadrature += glazed && c.method == DaylightConditions::Method::fit;
-    return;
-  }
   // |fit − L/L_z| ≤ max_error on the hemisphere, so the integral against (n·u) ≥ 0 is off by at
   // most max_error · ∫_A (n·u) dσ.
   out.sky += aperture.transmittance * cie_sky_irradiance(*c.fit, c.cie->sun, region, n);
   out.sky_error += aperture.transmittance * c.fit->max_error * lambert(region, n);
+}
+
+// E/L_z from the sky seen through a pane term (pane_transmittance.hpp). Where every pane is
+// parallel to the aperture (spread 0) the combined aperture is exact; else each direction takes
+// every pane's T at its own cosine: by the cubature of the Perez and CIE general skies, or, for the
+// uniform and overcast skies, as df's sky component does (pane_term_sky_irradiance).
+void add_pane_term_sky(const DaylightConditions& c, const Scene& scene, const Sensor& sensor, const PaneTerm& term,
+                       const SphericalRegion& region, SensorIlluminance& out) {
+  if (term.transmittance.spread == 0) {
+    add_sky(c, term.transmittance.combined, region, sensor.normal, out);
+    return;
+  }
+  if (c.sky == DaylightConditions::Sky::perez || c.sky == DaylightConditions::Sky::cie_general) {
+    const TransmittanceAlong along(scene, term.aperture, term.panes);
+    add_sky_by_cubature(c, [&along](const Vec3& u) { return along(u); }, 1.0, region, sensor.normal, out);
+    return;
+  }
+  SensorIlluminance closed;
+  add_sky(c, term.transmittance.combined, region, sensor.normal, closed);
+  const SkyModel model = c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast;
+  out.sky += pane_term_sky_irradiance(scene, sensor, model, region, term, closed.sky, out.sky_error);
 }
 
 // Direct sunlight through `aperture`: the disk's radiance L_s = E_dn / (π sin²ρ) (a uniform disk of
@@ -105,15 +128,14 @@ SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene
       if (c.has_sun()) out.sun += sun_through(c, scene.apertures[a], view.region, sensor.normal);
     }
     // Through panes in front as well: the sky with their transmittances and the aperture's
-    // (pane_transmittance.hpp; a pane not parallel to the aperture is taken as constant over the
-    // region, and its spread is added to the sky's bound), the sun with each pane's T at the sun.
+    // (add_pane_term_sky), the sun with each pane's T at the sun.
     for (const PaneView& behind : view.behind) {
       const double disk = c.has_sun() ? sun_disk(c, behind.region, sensor.normal) : 0.0;
       for (const PaneTerm& term : pane_terms(scene, a, behind)) {
         SensorIlluminance part;
-        add_sky(c, term.transmittance.combined, behind.region, sensor.normal, part);
+        add_pane_term_sky(c, scene, sensor, term, behind.region, part);
         out.sky += term.sign * part.sky;
-        out.sky_error += part.sky_error + term.transmittance.spread * std::abs(part.sky);
+        out.sky_error += part.sky_error;
         out.evaluations += part.evaluations;
         out.regions_by_quadrature += part.regions_by_quadrature;
         if (disk > 0) out.sun += term.sign * transmittance_along(scene, term.aperture, term.panes, c.sun) * disk;

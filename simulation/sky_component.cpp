@@ -39,15 +39,10 @@ Error non_finite(const Sensor& sensor) {
                ") with float geometry; use --geometry exact");
 }
 
-// The sky irradiance a PaneTerm gives over its region, before its sign, from the closed form
-// `closed` of its combined aperture; what it may be off by is added to `bound`. A glass pane not
-// parallel to the aperture makes the product of transmittances a polynomial in two cosines of
-// incidence, which the moments about one axis do not take, and taking one factor as constant over
-// the region cost up to 9 % (tilted tree-crown panes): there each direction takes every pane's T
-// at its own cosine, integrated by adaptive cubature to kPaneTolerance, whose error estimate is
-// the bound. (The cubature needs a sun to split at; these skies have none, so the zenith serves.)
-double pane_term_irradiance(const Scene& scene, const Sensor& sensor, SkyModel sky, const SphericalRegion& region,
-                            const PaneTerm& term, double closed, double& bound) {
+}  // namespace
+
+double pane_term_sky_irradiance(const Scene& scene, const Sensor& sensor, SkyModel sky, const SphericalRegion& region,
+                                const PaneTerm& term, double closed, double& bound) {
   if (term.transmittance.spread * std::abs(closed) <= kPaneBoundKept) {
     bound += term.transmittance.spread * std::abs(closed);
     return closed;
@@ -59,7 +54,6 @@ double pane_term_irradiance(const Scene& scene, const Sensor& sensor, SkyModel s
   return q.value;
 }
 
-}  // namespace
 
 SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
                                               SkyModel sky, VisibilityCounters& counters) {
@@ -74,7 +68,7 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
     L.beta = {0, 0, 2.0 / 3};
   }
   // A region's part, negated for a count taken back (PaneView, sign −1). The irradiance of a pane
-  // term is sky_component_percent's (pane_term_irradiance); its gradient takes the combined
+  // term is sky_component_percent's (pane_term_sky_irradiance); its gradient takes the combined
   // aperture's closed form (a pane at another angle as constant over the region).
   double unused_bound = 0;
   const auto add = [&](const SphericalRegion& region, const Aperture& aperture, double sign = 1,
@@ -97,7 +91,7 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
       L.c = aperture.angular_transmittance;
       g = directional_irradiance_gradient(region, sensor.position, sensor.normal, L, kGradientTolerance).value;
     }
-    if (term) e = pane_term_irradiance(scene, sensor, sky, region, *term, e, unused_bound);
+    if (term) e = pane_term_sky_irradiance(scene, sensor, sky, region, *term, e, unused_bound);
     irradiance += sign * e;
     gradient += sign * g;
   };
@@ -128,7 +122,7 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
     if (!view.region.empty()) irradiance += through(view.region, scene.apertures[a]);
     for (const PaneView& behind : view.behind)
       for (const PaneTerm& term : pane_terms(scene, a, behind))
-        irradiance += term.sign * pane_term_irradiance(scene, sensor, sky, behind.region, term,
+        irradiance += term.sign * pane_term_sky_irradiance(scene, sensor, sky, behind.region, term,
                                                        through(behind.region, term.transmittance.combined), bound);
   }
   const double e_out = unobstructed_horizontal_irradiance(sky);
