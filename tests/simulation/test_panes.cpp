@@ -68,6 +68,24 @@ ApertureView window_view(const Scene& scene) {
   return engine.aperture_view(sensor_position, up, 0, counters);
 }
 
+// The glass window and, in front of it, a large glass pane tilted about x by 39° (scene), and the
+// pane alone (pane_only). The pane crosses the window's plane above z = 2.125: rays through the
+// window's top meet it beyond the window. Every ray through the window crosses the pane, before or
+// after, so the scene gives what the pane alone gives plus, over the window's view,
+// L cos T_pane (T_window − 1).
+struct TiltedPane {
+  Scene scene, pane_only;
+  const Aperture& window_glass() const { return scene.apertures[0]; }
+  const Aperture& pane() const { return scene.apertures[1]; }
+};
+TiltedPane tilted_pane() {
+  TiltedPane t;
+  t.scene.apertures.push_back(glass_pane(window, 0.96));
+  t.scene.apertures.push_back(glass_pane(pane_at(0.3, 0.8), 0.96));
+  t.pane_only.apertures.push_back(t.scene.apertures[1]);
+  return t;
+}
+
 }  // namespace
 
 TEST_CASE("panes: the sky through a pane and then a window is counted once") {
@@ -132,14 +150,8 @@ TEST_CASE("panes: two parallel glass panes give the product of their transmittan
 }
 
 TEST_CASE("panes: behind a tilted glass pane each direction takes each pane's transmittance, to the cubature's estimate") {
-  Scene scene;
-  scene.apertures.push_back(glass_pane(window, 0.96));
-  scene.apertures.push_back(glass_pane(pane_at(0.3, 0.8), 0.96));  // tilted about x by 39°
-  Scene pane_only;
-  pane_only.apertures.push_back(scene.apertures[1]);
-  // The pane crosses the window's plane above z = 2.125: rays through the window's top meet it
-  // beyond the window. Every ray through the window crosses the pane, before or after, so the
-  // scene gives what the pane alone gives plus, over the window's view, L cos T_pane (T_window − 1).
+  const TiltedPane t = tilted_pane();
+  const Scene &scene = t.scene, &pane_only = t.pane_only;
   const VisibilityEngine engine(scene, GeometryMode::exact), alone(pane_only, GeometryMode::exact);
   VisibilityCounters counters;
   double bound = 0;
@@ -147,8 +159,7 @@ TEST_CASE("panes: behind a tilted glass pane each direction takes each pane's tr
   const double pane = sky_component_percent(alone, pane_only, {sensor_position, up}, SkyModel::cie_overcast, counters);
   CHECK(counters.panes_crossing > 0);
   CHECK(bound > 0);
-  const Aperture& w = scene.apertures[0];
-  const Aperture& q = scene.apertures[1];
+  const Aperture &w = t.window_glass(), &q = t.pane();
   const long double e_out = 7 * std::numbers::pi_v<long double> / 9;
   const long double reference =
       100 / e_out * test::integrate_directions(test::lvec(sensor_position), {0, 2, 1}, {2, 0, 0}, {0, 0, 1.2}, [&](const LVec3& u) {
@@ -170,13 +181,9 @@ TEST_CASE("panes: illuminance behind a tilted glass pane takes each pane's trans
   // the pane alone against long-double quadrature of L T_pane (T_window − 1) cos over the window.
   // Taking the tilted pane as constant over the region, as before, was off by 0.5 % (overcast) and
   // 1.9 % (type 12) of that difference, with bounds of 26 % of it: the second check failed.
-  Scene scene;
-  scene.apertures.push_back(glass_pane(window, 0.96));
-  scene.apertures.push_back(glass_pane(pane_at(0.3, 0.8), 0.96));
-  Scene pane_only;
-  pane_only.apertures.push_back(scene.apertures[1]);
-  const Aperture& w = scene.apertures[0];
-  const Aperture& q = scene.apertures[1];
+  const TiltedPane t = tilted_pane();
+  const Scene &scene = t.scene, &pane_only = t.pane_only;
+  const Aperture &w = t.window_glass(), &q = t.pane();
   SensorGrid grid;
   grid.sensors = {{sensor_position, up}};
   const VisibilityEngine engine(scene, GeometryMode::exact), alone(pane_only, GeometryMode::exact);
@@ -212,11 +219,8 @@ TEST_CASE("panes: annual moments behind a tilted glass pane take each pane's tra
   // its own cosine is exact up to
   // the rule (moments agree to 1e-12 across orders) and the cut at the window's plane (rounded to
   // an ulp: 1e-9, as above).
-  Scene scene;
-  scene.apertures.push_back(glass_pane(window, 0.96));
-  scene.apertures.push_back(glass_pane(pane_at(0.3, 0.8), 0.96));
-  Scene pane_only;
-  pane_only.apertures.push_back(scene.apertures[1]);
+  const TiltedPane t = tilted_pane();
+  const Scene &scene = t.scene, &pane_only = t.pane_only;
   const int degree = 4;
   const auto coefficients = [&](const Scene& s) {
     const VisibilityEngine engine(s, GeometryMode::exact);
@@ -227,8 +231,7 @@ TEST_CASE("panes: annual moments behind a tilted glass pane take each pane's tra
     return sensor_coefficients(engine, s, {sensor_position, up}, groups, degree, counters);
   };
   const SensorCoefficients both = coefficients(scene), alone = coefficients(pane_only);
-  const Aperture& w = scene.apertures[0];
-  const Aperture& q = scene.apertures[1];
+  const Aperture &w = t.window_glass(), &q = t.pane();
   // Family 0 (the constant) at Chebyshev degrees k = 0..degree: φ = T_k(2 u_z − 1).
   for (int k = 0; k <= degree; ++k) {
     const long double reference =

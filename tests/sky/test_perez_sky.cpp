@@ -219,6 +219,26 @@ Scene window_scene_for_perez(bool obstructed) {
   return scene;
 }
 
+// The hour of the annual cases for a sensor at p: the sun through the window's point (1, 0, 1.8),
+// so that the circumsolar peak lies in the region; its Perez sky (published model) and the
+// long-double reference's condition.
+struct WindowHour {
+  Vec3 sun;
+  double zenith_deg;
+  PerezSky sky;
+  Reference r;
+  LVec3 s;
+  ld lv_zenith;
+};
+WindowHour window_hour(const Vec3& p) {
+  const Vec3 sun = normalized(Vec3{1, 0, 1.8} - p);
+  const double zenith_deg = std::acos(sun.z) * 180 / std::numbers::pi;
+  const Reference r = reference(70, 800, zenith_deg, 1400);
+  const LVec3 s = test::lvec(sun);
+  return {sun, zenith_deg, PerezSky(perez_condition(input(70, 800, zenith_deg), PerezClamps::none), sun, PerezClamps::none),
+          r, s, lv(r, s, {0, 0, 1})};
+}
+
 }  // namespace
 
 TEST_CASE("one Perez hour through an unobstructed and an obstructed window agrees with a 2-D quadrature to 1e-6") {
@@ -261,13 +281,13 @@ TEST_CASE("the annual daylight coefficients of one Perez hour agree with a 2-D q
   // cubature in the sun's frame. The table shows the error and the hour's bound against the
   // basis degree D; from D = 24 on the bound itself is below 1e-6 (measured: see the WARN lines).
   const Vec3 p{0.6, 1.5, 0.85}, n{0, 0, 1};
-  const Vec3 sun = normalized(Vec3{1, 0, 1.8} - p);
-  const double zenith_deg = std::acos(sun.z) * 180 / std::numbers::pi;
-  const PerezSky sky(perez_condition(input(70, 800, zenith_deg), PerezClamps::none), sun, PerezClamps::none);
+  const WindowHour h = window_hour(p);
+  const Vec3& sun = h.sun;
+  const PerezSky& sky = h.sky;
+  const Reference& r = h.r;
+  const LVec3& s = h.s;
+  const ld lv_zenith = h.lv_zenith;
   const double E_dh = 12000;
-  const Reference r = reference(70, 800, zenith_deg, 1400);
-  const LVec3 s = test::lvec(sun);
-  const ld lv_zenith = lv(r, s, {0, 0, 1});
   const double zenith_luminance = E_dh / sky.horizontal_irradiance_over_zenith();
   const Sensor sensor{p, n};
   for (bool obstructed : {false, true}) {
@@ -331,14 +351,11 @@ TEST_CASE("a sensor 0.25 m from the window: the moments' two orders agree, the h
   // roundoff and the bound is the fit's. The sun through the window's point (1, 0, 1.8), so that
   // the circumsolar peak lies in the region, as in the cases above.
   const Vec3 p{1.0, 0.25, 0.85}, n{0, 0, 1};
-  const Vec3 sun = normalized(Vec3{1, 0, 1.8} - p);
-  const double zenith_deg = std::acos(sun.z) * 180 / std::numbers::pi;
-  const PerezSky sky(perez_condition(input(70, 800, zenith_deg), PerezClamps::none), sun, PerezClamps::none);
+  const WindowHour h = window_hour(p);
+  const Vec3& sun = h.sun;
+  const PerezSky& sky = h.sky;
   const double E_dh = 12000;
-  const Reference r = reference(70, 800, zenith_deg, 1400);
-  const LVec3 s = test::lvec(sun);
-  const double want = double(window_reference(r, s, lv(r, s, {0, 0, 1}), p, false)) * E_dh /
-                      sky.horizontal_irradiance_over_zenith();
+  const double want = double(window_reference(h.r, h.s, h.lv_zenith, p, false)) * E_dh / sky.horizontal_irradiance_over_zenith();
   const Scene scene = window_scene_for_perez(false);
   const VisibilityEngine engine(scene, GeometryMode::exact);
   const Sensor sensor{p, n};
