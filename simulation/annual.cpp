@@ -72,11 +72,12 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   rule.regions = coefficients.regions.size();
   for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
     const quadrature::UnitGaussRule gl = quadrature::gauss_legendre_unit(order);
-    std::vector<CircumsolarRule::Node>& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
+    DirectionNodes& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
     for (const SeenRegion& seen : coefficients.regions) {
       const SeenTransmittance transmittance(scene, seen);
       for_each_fan_node(seen.region, gl, kCircumsolarMaxSide, [&](const Vec3& u, double area) {
-        nodes.push_back({u, seen.sign * area * dot(sensor.normal, u) * transmittance(u)});
+        // The sky has nothing below the horizon (the sum takes nodes above it only).
+        if (u.z > 0) nodes.push_back(u, seen.sign * area * dot(sensor.normal, u) * transmittance(u));
       });
     }
   }
@@ -222,9 +223,8 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       if (cap_lambert(seen.region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
   }
   if (fixed) {
-    double high = 0, low = 0;
-    for (const CircumsolarRule::Node& node : rule->high) high += node.weight * circumsolar(node.u);
-    for (const CircumsolarRule::Node& node : rule->low) low += node.weight * circumsolar(node.u);
+    const double high = circumsolar_sum(rule->high, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+    const double low = circumsolar_sum(rule->low, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
     if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high)) {
       value += high;
       error += std::abs(high - low);

@@ -28,6 +28,7 @@
 
 #include "simulation/annual_coefficients.hpp"
 #include "simulation/sky_patches.hpp"
+#include "sky/circumsolar_sum.hpp"
 #include "sky/perez_sky.hpp"
 #include "sky/site.hpp"
 #include "sky/weather_file.hpp"
@@ -176,11 +177,7 @@ inline constexpr double kCircumsolarMargin = 5 * 3.14159265358979323846 / 180;
 // took 45,006 but more nodes per hour.
 inline constexpr double kCircumsolarMaxSide = 1.0;
 struct CircumsolarRule {
-  struct Node {
-    Vec3 u;
-    double weight;
-  };
-  std::vector<Node> high, low;
+  DirectionNodes high, low;  // (n·u) T(u) dσ in the weights (sky/circumsolar_sum.hpp sums them)
   std::size_t regions = 0;
 };
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients);

@@ -1,0 +1,45 @@
+#include "sky/circumsolar_sum.hpp"
+
+#include <cmath>
+
+#if defined(DAYLIT_LIBMVEC)
+// glibc declares these vector variants only under -ffast-math (bits/math-vector.h); declaring them
+// here lets the loop below use them without fast-math's licence to reorder everything else.
+extern "C" {
+__attribute__((simd("notinbranch"))) double exp(double) noexcept;
+__attribute__((simd("notinbranch"))) double acos(double) noexcept;
+}
+#define DAYLIT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define DAYLIT_VECTOR_CLONES
+#endif
+
+namespace daylit {
+
+namespace {
+
+DAYLIT_VECTOR_CLONES
+double sum(const double* x, const double* y, const double* z, const double* w, std::size_t n, double sx, double sy,
+           double sz, double a, double b, double d, double t_min) noexcept {
+  double total = 0;
+#pragma omp simd reduction(+ : total)
+  for (std::size_t i = 0; i < n; ++i) {
+    // Each select its own statement: nested, or on the sum, they keep GCC from vectorizing.
+    const double t = z[i] > t_min ? z[i] : t_min;
+    const double dot = sx * x[i] + sy * y[i] + sz * z[i];
+    const double below = dot < -1.0 ? -1.0 : dot;
+    const double cos_gamma = below > 1.0 ? 1.0 : below;
+    total += w[i] * (1 + a * exp(b / t)) * exp(d * acos(cos_gamma));
+  }
+  return total;
+}
+
+}  // namespace
+
+double circumsolar_sum(const DirectionNodes& nodes, const Vec3& sun, double a, double b, double c, double d,
+                       double t_min) noexcept {
+  return c * sum(nodes.x.data(), nodes.y.data(), nodes.z.data(), nodes.weight.data(), nodes.size(), sun.x, sun.y, sun.z,
+                 a, b, d, t_min);
+}
+
+}  // namespace daylit
