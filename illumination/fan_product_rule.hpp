@@ -26,21 +26,11 @@
 
 namespace daylit {
 
-namespace fan_product_rule_detail {
-
+// Calls visit(u, w) for the nodes of the collapsed n × n rule on the one spherical triangle abc
+// (collapsed at a; unit vertices; w signed by the orientation of a, b, c).
 template <class Visit>
-void triangle(const Vec3& a, const Vec3& b, const Vec3& c, const quadrature::UnitGaussRule& rule, double max_side,
-              int depth, Visit& visit) {
-  const auto side = [](const Vec3& p, const Vec3& q) { return std::atan2(norm(cross(p, q)), dot(p, q)); };
-  if (depth < 8 && std::max({side(a, b), side(b, c), side(c, a)}) > max_side) {
-    // The midpoints of the three arcs: the children tile the spherical triangle exactly.
-    const Vec3 ab = normalized(a + b), bc = normalized(b + c), ca = normalized(c + a);
-    triangle(a, ab, ca, rule, max_side, depth + 1, visit);
-    triangle(ab, b, bc, rule, max_side, depth + 1, visit);
-    triangle(ca, bc, c, rule, max_side, depth + 1, visit);
-    triangle(ab, bc, ca, rule, max_side, depth + 1, visit);
-    return;
-  }
+void for_each_triangle_node(const Vec3& a, const Vec3& b, const Vec3& c, const quadrature::UnitGaussRule& rule,
+                            Visit&& visit) {
   const Vec3 ab = b - a, ac = c - a;
   const double det = dot(a, cross(ab, ac));
   if (det == 0) return;
@@ -55,18 +45,44 @@ void triangle(const Vec3& a, const Vec3& b, const Vec3& c, const quadrature::Uni
   }
 }
 
+namespace fan_product_rule_detail {
+
+template <class Visit>
+void split(const Vec3& a, const Vec3& b, const Vec3& c, double max_side, int depth, Visit& visit) {
+  const auto side = [](const Vec3& p, const Vec3& q) { return std::atan2(norm(cross(p, q)), dot(p, q)); };
+  if (depth < 8 && std::max({side(a, b), side(b, c), side(c, a)}) > max_side) {
+    // The midpoints of the three arcs: the children tile the spherical triangle exactly, and the
+    // first keeps a as its first vertex.
+    const Vec3 ab = normalized(a + b), bc = normalized(b + c), ca = normalized(c + a);
+    split(a, ab, ca, max_side, depth + 1, visit);
+    split(ab, b, bc, max_side, depth + 1, visit);
+    split(ca, bc, c, max_side, depth + 1, visit);
+    split(ab, bc, ca, max_side, depth + 1, visit);
+    return;
+  }
+  visit(a, b, c);
+}
+
 }  // namespace fan_product_rule_detail
+
+// Calls visit(a, b, c) for every triangle of the region's fan (unit vertices, the loop's
+// orientation kept), split as above until no side exceeds `max_side`.
+template <class Visit>
+void for_each_fan_triangle(const SphericalRegion& region, double max_side, Visit&& visit) {
+  for (const DirectionLoop& loop : region.loops) {
+    if (loop.size() < 3) continue;
+    const Vec3 a = normalized(loop[0]);
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i)
+      fan_product_rule_detail::split(a, normalized(loop[i]), normalized(loop[i + 1]), max_side, 0, visit);
+  }
+}
 
 // Calls visit(u, w) for every node (u unit, w its signed share of dσ) of the rule above.
 template <class Visit>
 void for_each_fan_node(const SphericalRegion& region, const quadrature::UnitGaussRule& rule, double max_side,
                        Visit&& visit) {
-  for (const DirectionLoop& loop : region.loops) {
-    if (loop.size() < 3) continue;
-    const Vec3 a = normalized(loop[0]);
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i)
-      fan_product_rule_detail::triangle(a, normalized(loop[i]), normalized(loop[i + 1]), rule, max_side, 0, visit);
-  }
+  for_each_fan_triangle(region, max_side,
+                        [&](const Vec3& a, const Vec3& b, const Vec3& c) { for_each_triangle_node(a, b, c, rule, visit); });
 }
 
 }  // namespace daylit

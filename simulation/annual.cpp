@@ -70,16 +70,33 @@ double direct_sun_lux(const Scene& scene, const SeenRegion& seen, const Vec3& n,
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients) {
   CircumsolarRule rule;
   rule.regions = coefficients.regions.size();
-  for (int order : {kCircumsolarOrderHigh, kCircumsolarOrderLow}) {
-    const quadrature::UnitGaussRule gl = quadrature::gauss_legendre_unit(order);
-    DirectionNodes& nodes = order == kCircumsolarOrderHigh ? rule.high : rule.low;
-    for (const SeenRegion& seen : coefficients.regions) {
-      const SeenTransmittance transmittance(scene, seen);
-      for_each_fan_node(seen.region, gl, kCircumsolarMaxSide, [&](const Vec3& u, double area) {
-        // The sky has nothing below the horizon (the sum takes nodes above it only).
-        if (u.z > 0) nodes.push_back(u, seen.sign * area * dot(sensor.normal, u) * transmittance(u));
-      });
-    }
+  static const quadrature::UnitGaussRule high = quadrature::gauss_legendre_unit(kCircumsolarOrderHigh),
+                                         low = quadrature::gauss_legendre_unit(kCircumsolarOrderLow);
+  const auto angle = [](const Vec3& p, const Vec3& q) { return std::atan2(norm(cross(p, q)), dot(p, q)); };
+  for (std::size_t r = 0; r < coefficients.regions.size(); ++r) {
+    const SeenRegion& seen = coefficients.regions[r];
+    const SeenTransmittance transmittance(scene, seen);
+    for_each_fan_triangle(seen.region, kCircumsolarMaxSide, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+      CircumsolarRule::Piece piece{a, b, c, r};
+      // The cap about the normalised centroid through the farthest vertex holds the triangle (a
+      // cap under a hemisphere is convex); the sun is near when within that radius + the margin.
+      piece.centre = normalized(a + b + c);
+      const double radius = std::max({angle(piece.centre, a), angle(piece.centre, b), angle(piece.centre, c)});
+      piece.near_cos = std::cos(std::min(std::numbers::pi, radius + kCircumsolarMargin));
+      // The sky has nothing below the horizon (the sum takes nodes above it only).
+      DirectionNodes* nodes = &rule.high;
+      const auto add = [&](const Vec3& u, double area) {
+        if (u.z > 0) nodes->push_back(u, seen.sign * area * dot(sensor.normal, u) * transmittance(u));
+      };
+      piece.high_begin = rule.high.size();
+      for_each_triangle_node(a, b, c, high, add);
+      piece.high_end = rule.high.size();
+      nodes = &rule.low;
+      piece.low_begin = rule.low.size();
+      for_each_triangle_node(a, b, c, low, add);
+      piece.low_end = rule.low.size();
+      rule.pieces.push_back(piece);
+    });
   }
   return rule;
 }
@@ -214,44 +231,57 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
     const double gamma = std::acos(std::clamp(dot(sky.sun(), u), -1.0, 1.0));
     return (1 + c.a * std::exp(c.b / t)) * c.c * std::exp(c.d * gamma);
   };
-  // The circumsolar term by the sensor's fixed rules where they agree (the sun well away from every
-  // region, so the indicatrix's kink is not inside: checked exactly with a cap of kCircumsolarMargin
-  // about the sky's sun), else by adaptive cubature split at the sun.
+  // An open aperture's constant τ scales a cubature's result; else T along each direction
+  // (through panes: each pane's at its own cosine, SeenTransmittance).
+  const auto cubature = [&](const SeenRegion& seen, const SphericalRegion& region) {
+    const SeenTransmittance along(scene, seen);
+    std::function<double(const Vec3&)> transmittance;
+    double scale = along.value();
+    if (!along.constant()) {
+      transmittance = [&along](const Vec3& u) { return along(u); };
+      scale = 1;
+    }
+    const QuadratureResult q =
+        hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
+                                                 region, sensor.normal, options.circumsolar_tolerance, transmittance)
+                     : sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
+                                                 options.circumsolar_tolerance, transmittance);
+    return QuadratureResult{seen.sign * scale * q.value, scale * q.error_estimate, q.evaluations};
+  };
+  // The circumsolar term by the sensor's fixed rules on the pieces far from the sun and adaptive
+  // cubature on those near it (CircumsolarRule); where the far pieces' two orders disagree, or
+  // without a rule, the whole term by adaptive cubature split at the sun.
   bool fixed = rule != nullptr && !hour.floored && c.c != 0 && rule->regions == coefficients.regions.size();
   if (fixed) {
-    for (const SeenRegion& seen : coefficients.regions)
-      if (cap_lambert(seen.region, sky.sun(), kCircumsolarMargin, sensor.normal) != 0) fixed = false;
-  }
-  if (fixed) {
-    const double high = circumsolar_sum(rule->high, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
-    const double low = circumsolar_sum(rule->low, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
-    if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high)) {
-      value += high;
-      error += std::abs(high - low);
+    double high = 0, low = 0, near = 0, near_error = 0;
+    std::vector<SphericalRegion> near_pieces(coefficients.regions.size());
+    for (const CircumsolarRule::Piece& piece : rule->pieces) {
+      if (dot(piece.centre, sky.sun()) >= piece.near_cos) {
+        near_pieces[piece.region].loops.push_back({piece.a, piece.b, piece.c});
+        continue;
+      }
+      high += circumsolar_sum(rule->high, piece.high_begin, piece.high_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+      low += circumsolar_sum(rule->low, piece.low_begin, piece.low_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+    }
+    for (std::size_t r = 0; r < near_pieces.size(); ++r) {
+      if (near_pieces[r].empty()) continue;
+      const QuadratureResult q = cubature(coefficients.regions[r], near_pieces[r]);
+      near += q.value;
+      near_error += q.error_estimate;
+      out.adaptive = true;
+    }
+    if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high + near)) {
+      value += high + near;
+      error += std::abs(high - low) + near_error;
     } else {
       fixed = false;
     }
   }
   for (const SeenRegion& seen : coefficients.regions) {
-    const SphericalRegion& region = seen.region;
-    if (!fixed) {
-      // An open aperture's constant τ scales the result; else T along each direction (through
-      // panes: each pane's at its own cosine, SeenTransmittance).
-      const SeenTransmittance along(scene, seen);
-      std::function<double(const Vec3&)> transmittance;
-      double scale = along.value();
-      if (!along.constant()) {
-        transmittance = [&along](const Vec3& u) { return along(u); };
-        scale = 1;
-      }
-      const QuadratureResult q =
-          hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
-                                                   region, sensor.normal, options.circumsolar_tolerance, transmittance)
-          : c.c != 0 ? sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
-                                                 options.circumsolar_tolerance, transmittance)
-                     : QuadratureResult{0, 0, 0};
-      value += seen.sign * scale * q.value;
-      error += scale * q.error_estimate;
+    if (!fixed && (hour.floored || c.c != 0)) {
+      const QuadratureResult q = cubature(seen, seen.region);
+      value += q.value;
+      error += q.error_estimate;
       out.adaptive = true;
     }
     if (hour.direct_normal_lux > 0)

@@ -161,15 +161,18 @@ struct HourIlluminance {
 };
 
 // Fixed product Gauss rules (kCircumsolarOrderHigh² and kCircumsolarOrderLow² points per fan
-// triangle, split to sides of at most kCircumsolarMaxSide as the moments are: fan_product_rule.hpp)
-// over a sensor's regions, with (n·u) T(u) in the weights: built once
-// per sensor, they integrate the hour's circumsolar term c·G(u_z)·e^{dγ} as two sums. An hour takes
-// the high rule's sum when the two agree to the circumsolar tolerance (their difference is its
-// error estimate) and the sky's sun is more than kCircumsolarMargin from every region (so the kink
-// of e^{dγ} at the sun is not near the nodes); otherwise adaptive cubature split at the sun.
-// (A product rule in the sun's frame — a fan from the sun, Duffy-collapsed there — was tried: it
-// needs order 20 against 14 to reach 1e-6 on test_perez_sky's window and cost more CPU than the
-// adaptive cubature over the Chicago year, so it is not used.)
+// triangle, the triangles split to sides of at most kCircumsolarMaxSide as the moments' are:
+// fan_product_rule.hpp) over a sensor's regions, with (n·u) T(u) in the weights: built once per
+// sensor, they integrate the hour's circumsolar term c·G(u_z)·e^{dγ} as sums (circumsolar_sum).
+// Per hour, the pieces (split triangles) whose cap lies more than kCircumsolarMargin from the sky's
+// sun take their nodes' sums; the few near it, where the kink of e^{dγ} at the sun would spoil a
+// fixed rule, go to adaptive cubature split at the sun, over those pieces alone. The two orders'
+// difference over the far pieces is the estimate of their error, accepted when within the
+// circumsolar tolerance of the whole term; else the whole term goes to adaptive cubature.
+// (A product rule in the sun's frame — a fan from the sun, Duffy-collapsed there — was tried twice:
+// unsplit, it needed order 20 against 14 to reach 1e-6 on test_perez_sky's window; split to 1 rad,
+// its orders 12 and 8 agreed in only a third of the near-sun hours, the sun lying close to the
+// edges of its thin triangles. Neither paid.)
 inline constexpr int kCircumsolarOrderHigh = 12, kCircumsolarOrderLow = 8;
 inline constexpr double kCircumsolarMargin = 5 * 3.14159265358979323846 / 180;
 // 1 rad: on the room sample (40 sensors, Chicago year) the sensor-hours sent to adaptive cubature
@@ -177,7 +180,15 @@ inline constexpr double kCircumsolarMargin = 5 * 3.14159265358979323846 / 180;
 // took 45,006 but more nodes per hour.
 inline constexpr double kCircumsolarMaxSide = 1.0;
 struct CircumsolarRule {
-  DirectionNodes high, low;  // (n·u) T(u) dσ in the weights (sky/circumsolar_sum.hpp sums them)
+  struct Piece {
+    Vec3 a, b, c;                  // unit vertices, the region's orientation
+    std::size_t region = 0;        // SensorCoefficients::regions
+    std::size_t high_begin = 0, high_end = 0, low_begin = 0, low_end = 0;  // its nodes
+    Vec3 centre{};                 // a cap about `centre` holds the piece...
+    double near_cos = 1;           // ...and the sun is near it when centre·sun ≥ this (cap + margin)
+  };
+  std::vector<Piece> pieces;
+  DirectionNodes high, low;  // (n·u) T(u) dσ in the weights, region's sign included
   std::size_t regions = 0;
 };
 CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const SensorCoefficients& coefficients);

@@ -36,10 +36,15 @@ double sum(const double* x, const double* y, const double* z, const double* w, s
 
 }  // namespace
 
+double circumsolar_sum(const DirectionNodes& nodes, std::size_t begin, std::size_t end, const Vec3& sun, double a,
+                       double b, double c, double d, double t_min) noexcept {
+  return c * sum(nodes.x.data() + begin, nodes.y.data() + begin, nodes.z.data() + begin, nodes.weight.data() + begin,
+                 end - begin, sun.x, sun.y, sun.z, a, b, d, t_min);
+}
+
 double circumsolar_sum(const DirectionNodes& nodes, const Vec3& sun, double a, double b, double c, double d,
                        double t_min) noexcept {
-  return c * sum(nodes.x.data(), nodes.y.data(), nodes.z.data(), nodes.weight.data(), nodes.size(), sun.x, sun.y, sun.z,
-                 a, b, d, t_min);
+  return circumsolar_sum(nodes, 0, nodes.size(), sun, a, b, c, d, t_min);
 }
 
 }  // namespace daylit

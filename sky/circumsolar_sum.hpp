@@ -34,5 +34,8 @@ struct DirectionNodes {
 // (0 for the published model, Radiance's 0.01 under its clamps).
 double circumsolar_sum(const DirectionNodes& nodes, const Vec3& sun, double a, double b, double c, double d,
                        double t_min) noexcept;
+// The same over the nodes [begin, end).
+double circumsolar_sum(const DirectionNodes& nodes, std::size_t begin, std::size_t end, const Vec3& sun, double a,
+                       double b, double c, double d, double t_min) noexcept;
 
 }  // namespace daylit
