@@ -134,7 +134,7 @@ nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std
                      "circumsolar cubature's estimate, all in lux"}}},
           {"reflected", reflected},
           {"moment_error_relative_max", g.result.max_moment_error},
-          {"circumsolar_adaptive_sensor_hours", g.result.adaptive_circumsolar},
+          {"circumsolar_adaptive_sensor_hours", g.result.adaptive_circumsolar},  // any piece by cubature
           {"run_time_s", {{"coefficients", g.result.coefficient_time_s}, {"hourly", g.result.hourly_time_s}}},
           {"run_time_per_sensor_year_ms",
            sensor_years > 0 ? 1e3 * (g.result.coefficient_time_s + g.result.hourly_time_s) / sensor_years : 0.0},
@@ -160,10 +160,12 @@ nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& option
           {"basis", {{"kind", "Chebyshev T_k(2 u_z - 1) times {1, u_x^2, u_y^2, u_z^2, u_x u_y, u_x u_z, u_y u_z}"},
                      {"degree", options.degree},
                      {"gradation_fit_bound_max", sky.max_fit_error}}},
-          {"circumsolar", {{"method", fmt::format("fixed product rules per sensor (orders {} and {} per fan triangle) where the "
-                                                  "sky's sun is more than 5 deg from every region and the two agree to the "
-                                                  "tolerance; else adaptive cubature over the region, split at the sun",
-                                                  kCircumsolarOrderHigh, kCircumsolarOrderLow)},
+          {"circumsolar", {{"method", fmt::format("fixed product rules per sensor (orders {} and {} on each piece: the fan "
+                                                  "triangles split to sides of {} rad) on the pieces more than 5 deg from the "
+                                                  "sky's sun, adaptive cubature split at the sun on those nearer; the whole "
+                                                  "term by adaptive cubature where the far pieces' two orders differ by more "
+                                                  "than the tolerance",
+                                                  kCircumsolarOrderHigh, kCircumsolarOrderLow, kCircumsolarMaxSide)},
                            {"tolerance", options.circumsolar_tolerance}}}};
 }
 

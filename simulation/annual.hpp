@@ -5,8 +5,10 @@
 //
 // Per hour and sensor: E_sky = (E_dh / N) [Σ_j c_j B_j + C], with c_j the hour's smooth-part
 // coefficients (fit_smooth_sky), B_j the sensor's moments, C the circumsolar term
-// c ∫_A G(u_z) e^{dγ} (n·u) T dσ over the sensor's stored regions by adaptive cubature split at
-// the sun (sky_quadrature.hpp; its error estimate counts in the bound), and N the sky's own
+// c ∫_A G(u_z) e^{dγ} (n·u) T dσ over the sensor's stored regions, by its fixed rules on the pieces
+// far from the sun and adaptive cubature split at the sun on those near it (CircumsolarRule,
+// sky_quadrature.hpp; the rules' two-order difference and the cubature's estimate count in the
+// bound), and N the sky's own
 // normalisation (PerezSky). Hours in which Radiance's clamp 5 (negative luminance set to 0)
 // acted are not a sum of basis terms: they are integrated by cubature of the whole clamped
 // luminance over each region, and counted. The sun: its disk cut exactly by each region
@@ -117,7 +119,7 @@ struct AnnualGridResult {
   std::vector<std::uint8_t> blinds_closed;
   std::size_t groups = 0;
   double max_moment_error = 0;
-  std::size_t adaptive_circumsolar = 0;  // sensor-hour-groups whose circumsolar term needed adaptive cubature
+  std::size_t adaptive_circumsolar = 0;  // sensor-hour-groups in which any of the circumsolar term went to adaptive cubature
   VisibilityCounters counters;
   double coefficient_time_s = 0, hourly_time_s = 0;
   // With reflections (annual_reflections.hpp): per sensor the largest per-hour error estimate of
