@@ -3,6 +3,7 @@
 // path for sky luminances that have no closed form (DESIGN.md §6), and an honest baseline beside
 // the closed forms.
 
+#include <cstddef>
 #include <functional>
 
 #include "geometry/spherical_region.hpp"
@@ -24,5 +25,12 @@ struct QuadratureResult {
 // else split, to a depth of 16. The error estimate is what the accepted comparisons sum to.
 QuadratureResult integrate_over_region(const SphericalRegion& region, const std::function<double(const Vec3&)>& g,
                                        double tolerance);
+
+// The integrand at n unit directions at once (values[i] = g(x[i], y[i], z[i])): the same cubature,
+// the rule's 16 directions per triangle passed together, so that an integrand can evaluate them
+// four at a time (sky/circumsolar_sum.hpp).
+using DirectionBatch =
+    std::function<void(const double* x, const double* y, const double* z, std::size_t n, double* values)>;
+QuadratureResult integrate_over_region(const SphericalRegion& region, const DirectionBatch& g, double tolerance);
 
 }  // namespace daylit

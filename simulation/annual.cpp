@@ -222,15 +222,6 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
     error += hour.fit.bound_over(coefficients.min_uz, coefficients.max_uz) * lambert + coefficients.moment_error * lambert_max * abs_coefficients;
   }
   const double min_cos = sky.clamps() == PerezClamps::radiance ? kMinCosRadiance : 0.0;
-  const auto circumsolar = [&](const Vec3& u) {
-    if (!(u.z > 0)) return 0.0;
-    const double t = std::max(u.z, min_cos);
-    // acos rather than atan2(|s × u|, s·u): near the sun it loses relative accuracy in γ, but its
-    // absolute error (≈ ε / sin γ, below 1e-8 rad unless u is within 1e-8 of the sun) moves
-    // e^{dγ} by less than the circumsolar tolerance, and it is a third of the cost.
-    const double gamma = std::acos(std::clamp(dot(sky.sun(), u), -1.0, 1.0));
-    return (1 + c.a * std::exp(c.b / t)) * c.c * std::exp(c.d * gamma);
-  };
   // An open aperture's constant τ scales a cubature's result; else T along each direction
   // (through panes: each pane's at its own cosine, SeenTransmittance).
   const auto cubature = [&](const SeenRegion& seen, const SphericalRegion& region) {
@@ -241,11 +232,19 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       transmittance = [&along](const Vec3& u) { return along(u); };
       scale = 1;
     }
+    // The circumsolar term's 16 directions per triangle at a time (circumsolar_values), times
+    // (n·u)₊ and T.
+    const DirectionBatch batch = [&](const double* x, const double* y, const double* z, std::size_t count, double* out) {
+      circumsolar_values(x, y, z, count, sky.sun(), c.a, c.b, c.c, c.d, min_cos, out);
+      for (std::size_t i = 0; i < count; ++i) {
+        const Vec3 u{x[i], y[i], z[i]};
+        out[i] *= std::max(0.0, dot(sensor.normal, u)) * (transmittance ? transmittance(u) : 1.0);
+      }
+    };
     const QuadratureResult q =
         hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),
                                                  region, sensor.normal, options.circumsolar_tolerance, transmittance)
-                     : sky_irradiance_quadrature(circumsolar, sky.sun(), region, sensor.normal,
-                                                 options.circumsolar_tolerance, transmittance);
+                     : integrate_over_region(split_at_sun(region, sky.sun()), batch, options.circumsolar_tolerance);
     return QuadratureResult{seen.sign * scale * q.value, scale * q.error_estimate, q.evaluations};
   };
   // The circumsolar term by the sensor's fixed rules on the pieces far from the sun and adaptive

@@ -9,7 +9,9 @@
 // sum runs four directions at a time: with GCC on x86-64 the exponentials and arc cosines come from
 // glibc's vector math library (libmvec, within 4 ulp), with an AVX2 version chosen at run time
 // where the processor has it (measured on the development machine: 5.6 against 25 ns per node);
-// elsewhere it is the plain loop. The order of the additions differs from a loop node by node, so
+// elsewhere it is the plain loop. γ is taken as acos(s·u), not atan2(|s × u|, s·u): near the sun
+// it loses relative accuracy, but its absolute error (≈ ε / sin γ, below 1e-8 rad unless u is
+// within 1e-8 of the sun) moves e^{dγ} by far less than any tolerance asked of these sums. The order of the additions differs from a loop node by node, so
 // results differ from it by rounding only.
 
 #include <cstddef>
@@ -34,6 +36,11 @@ struct DirectionNodes {
 // (0 for the published model, Radiance's 0.01 under its clamps).
 double circumsolar_sum(const DirectionNodes& nodes, const Vec3& sun, double a, double b, double c, double d,
                        double t_min) noexcept;
+// The term itself, c G(t) e^{dγ}, at n directions (values[i]; 0 where u_z ≤ 0): the integrand of
+// the adaptive cubature near the sun, given its 16 directions at a time.
+void circumsolar_values(const double* x, const double* y, const double* z, std::size_t n, const Vec3& sun, double a,
+                        double b, double c, double d, double t_min, double* values) noexcept;
+
 // The same over the nodes [begin, end).
 double circumsolar_sum(const DirectionNodes& nodes, std::size_t begin, std::size_t end, const Vec3& sun, double a,
                        double b, double c, double d, double t_min) noexcept;

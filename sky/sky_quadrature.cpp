@@ -4,9 +4,7 @@
 
 namespace daylit {
 
-QuadratureResult sky_irradiance_quadrature(const std::function<double(const Vec3&)>& luminance, const Vec3& s,
-                                           const SphericalRegion& region, const Vec3& n, double tolerance,
-                                           const std::function<double(const Vec3&)>& transmittance) {
+SphericalRegion split_at_sun(const SphericalRegion& region, const Vec3& s) {
   SphericalRegion triangles;
   for (const DirectionLoop& loop : region.loops)
     for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
@@ -23,8 +21,14 @@ QuadratureResult sky_irradiance_quadrature(const std::function<double(const Vec3
         triangles.loops.push_back({a, b, c});
       }
     }
+  return triangles;
+}
+
+QuadratureResult sky_irradiance_quadrature(const std::function<double(const Vec3&)>& luminance, const Vec3& s,
+                                           const SphericalRegion& region, const Vec3& n, double tolerance,
+                                           const std::function<double(const Vec3&)>& transmittance) {
   return integrate_over_region(
-      triangles,
+      split_at_sun(region, s),
       [&](const Vec3& u) {
         const double l = luminance(u) * std::max(0.0, dot(n, u));
         return transmittance ? l * transmittance(u) : l;

@@ -19,4 +19,9 @@ QuadratureResult sky_irradiance_quadrature(const std::function<double(const Vec3
                                            const SphericalRegion& region, const Vec3& n, double tolerance,
                                            const std::function<double(const Vec3&)>& transmittance = {});
 
+// The region's fan triangles, each that holds the sun s split into three with s as a vertex: what
+// sky_irradiance_quadrature integrates, for an integrand given in batches (integrate_over_region
+// with a DirectionBatch).
+SphericalRegion split_at_sun(const SphericalRegion& region, const Vec3& s);
+
 }  // namespace daylit
