@@ -233,13 +233,12 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       scale = 1;
     }
     // The circumsolar term's 16 directions per triangle at a time (circumsolar_values), times
-    // (n·u)₊ and T.
+    // (n·u)₊ and T (the constant τ of an open aperture is `scale`).
+    const Vec3 n = sensor.normal;
     const DirectionBatch batch = [&](const double* x, const double* y, const double* z, std::size_t count, double* out) {
       circumsolar_values(x, y, z, count, sky.sun(), c.a, c.b, c.c, c.d, min_cos, out);
-      for (std::size_t i = 0; i < count; ++i) {
-        const Vec3 u{x[i], y[i], z[i]};
-        out[i] *= std::max(0.0, dot(sensor.normal, u)) * (transmittance ? transmittance(u) : 1.0);
-      }
+      for (std::size_t i = 0; i < count; ++i) out[i] *= std::max(0.0, n.x * x[i] + n.y * y[i] + n.z * z[i]);
+      if (!along.constant()) along.multiply(x, y, z, count, out);
     };
     const QuadratureResult q =
         hour.floored ? sky_irradiance_quadrature([&sky](const Vec3& u) { return sky.luminance_function(u); }, sky.sun(),

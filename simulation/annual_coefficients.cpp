@@ -98,6 +98,24 @@ double SeenTransmittance::operator()(const Vec3& u) const noexcept {
   return constant_;
 }
 
+void SeenTransmittance::multiply(const double* x, const double* y, const double* z, std::size_t n,
+                                 double* values) const noexcept {
+  if (along_) {
+    for (std::size_t i = 0; i < n; ++i) values[i] *= (*along_)(Vec3{x[i], y[i], z[i]});
+  } else if (angular_ != nullptr) {
+    // Horner's rule inline (evaluate_polynomial's, without a call per direction).
+    const std::vector<double>& c = *angular_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double mu = std::abs(axis_.x * x[i] + axis_.y * y[i] + axis_.z * z[i]);
+      double t = 0;
+      for (auto k = c.rbegin(); k != c.rend(); ++k) t = t * mu + *k;
+      values[i] *= t;
+    }
+  } else {
+    for (std::size_t i = 0; i < n; ++i) values[i] *= constant_;
+  }
+}
+
 WindowGroups window_groups(const Scene& scene) {
   WindowGroups g;
   std::map<std::string, int> index;

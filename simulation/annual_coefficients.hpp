@@ -76,6 +76,8 @@ class SeenTransmittance {
  public:
   SeenTransmittance(const Scene& scene, const SeenRegion& seen);
   double operator()(const Vec3& u) const noexcept;
+  // values[i] *= T(u_i) for n directions given as coordinate arrays (a batch of the cubature).
+  void multiply(const double* x, const double* y, const double* z, std::size_t n, double* values) const noexcept;
   // The same value along every direction (an open aperture): value() then.
   bool constant() const noexcept { return !along_ && angular_ == nullptr; }
   double value() const noexcept { return constant_; }
