@@ -119,6 +119,7 @@ struct PerezSetup {
   ModelSun sun;
   nlohmann::json weather;           // what was read and which hour was used
   std::string site_source = "none";  // "--site", "weather file" or "none"
+  std::vector<std::string> notices;
 };
 
 PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site) {
@@ -143,6 +144,13 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
       throw Error(fmt::format("{}:{}: the sun is below the horizon for the whole hour {}:00–{}:00 local standard time; the "
                               "Perez sky needs it up",
                               file.path, r.line, w.hour_ending - 1, w.hour_ending));
+    // A typical-year file takes each month from another year; the record is found by month, day
+    // and hour, the sun computed for the year asked. Said, because `annual` takes the record's
+    // own year, and the two suns differ by up to a tenth of a degree.
+    if (r.year > 0 && r.year != w.local_standard.year)
+      p.notices.push_back(fmt::format("{}:{}: the record is from {}, --time asks for {}: the sun is taken for {} (`daylit "
+                                      "annual` takes each record's own year; give --time in {} for the same sun)",
+                                      file.path, r.line, r.year, w.local_standard.year, w.local_standard.year, r.year));
     p.sun.source = "spa";
     p.sun.zenith_deg = w.sun.position.zenith_deg;
     p.sun.azimuth_deg = w.sun.position.azimuth_deg;
@@ -160,7 +168,8 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
                  {"place", file.location.place},
                  {"time_zone_h", file.location.time_zone_h},
                  {"records", file.records.size()},
-                 {"record", {{"line", r.line}, {"month", r.month}, {"day", r.day}, {"hour", r.hour}}},
+                 {"record", {{"line", r.line}, {"year", r.year}, {"month", r.month}, {"day", r.day}, {"hour", r.hour}}},
+                 {"sun_year", w.local_standard.year},
                  {"hour", fmt::format("{:02}-{:02} {:02}:00–{:02}:00 local standard time (UTC{:+g})", r.month, r.day,
                                       w.hour_ending - 1, w.hour_ending, file.location.time_zone_h)},
                  {"sun_taken_at", fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:06.3f} (UTC{:+g})", i.year, i.month, i.day,
@@ -288,8 +297,11 @@ int run_illuminance(IlluminanceOptions opt) {
   if (c.has_sun()) sun_beam = SunBeam{c.sun, c.sun_half_angle};
   ModelInputs model = load_model(opt.files, c.sky == DaylightConditions::Sky::uniform ? SkyModel::uniform : SkyModel::cie_overcast,
                                  sun_beam);
-  if (!opt.quiet)
+  if (!opt.quiet) {
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
+    if (perez_hour_setup)
+      for (const auto& notice : perez_hour_setup->notices) std::cerr << "notice: " << notice << '\n';
+  }
 
   const VisibilityEngine engine(model.scene, mode);
   const bool show_progress = !opt.quiet && stderr_is_terminal();

@@ -35,6 +35,22 @@ assert "policy" in w["missing_values"]
 PY
 head -1 "$work/epw.csv" | grep -q '^grid,index' || fail "CSV"
 
+# A typical-year file's record from another year than --time's: the sun is taken for the year
+# asked, and a notice (and the summary) says so, since `annual` takes the record's own year.
+loud=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$work/grid.pts")
+for year in 2026 1986; do
+  "$daylit" illuminance --components sc "${loud[@]}" --sky perez --weather "$epw" --time "$year-01-01T12:00:00-06:00" \
+    --summary "$work/year-$year.json" --out /dev/null 2> "$work/year-$year.err" || fail "perez hour asked in $year"
+done
+grep -q "the record is from 1986, --time asks for 2026: the sun is taken for 2026" "$work/year-2026.err" \
+  || fail "no notice for a record from another year"
+grep -q "the record is from" "$work/year-1986.err" && fail "a notice for a record of the year asked"
+python3 - "$work/year-2026.json" <<'PY' || fail "the summary's record and sun years"
+import json, sys
+w = json.load(open(sys.argv[1]))["weather"]
+assert w["record"]["year"] == 1986 and w["sun_year"] == 2026, w
+PY
+
 # The same hour asked in UTC picks the same record; 12:00:01 local picks the next one.
 "$daylit" illuminance --components sc "${office[@]}" --sky perez --weather "$epw" --time 2026-01-01T18:00:00Z --summary "$work/utc.json" \
   --out "$work/utc.csv" || fail "perez at a UTC time"
