@@ -146,7 +146,7 @@ PerezSetup perez_setup(const IlluminanceOptions& opt, std::optional<Site>& site)
                               file.path, r.line, w.hour_ending - 1, w.hour_ending));
     // A typical-year file takes each month from another year; the record is found by month, day
     // and hour, the sun computed for the year asked. Said, because `annual` takes the record's
-    // own year, and the two suns differ by up to a tenth of a degree.
+    // own year, and the two suns differ by up to 0.3° (near the equinoxes).
     if (r.year > 0 && r.year != w.local_standard.year)
       p.notices.push_back(fmt::format("{}:{}: the record is from {}, --time asks for {}: the sun is taken for {} (`daylit "
                                       "annual` takes each record's own year; give --time in {} for the same sun)",
