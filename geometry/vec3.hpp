@@ -30,6 +30,8 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) noexcept {
 // Euclidean length without overflow or underflow for any finite vector.
 inline double norm(const Vec3& a) noexcept { return std::hypot(a.x, a.y, a.z); }
 inline Vec3 normalized(const Vec3& a) noexcept { return a / norm(a); }
+// The angle between two directions, accurate near 0 and π (where acos of the cosine is not).
+inline double angle_between(const Vec3& a, const Vec3& b) noexcept { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 inline bool is_finite(const Vec3& a) noexcept {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }

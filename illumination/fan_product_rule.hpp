@@ -49,8 +49,7 @@ namespace fan_product_rule_detail {
 
 template <class Visit>
 void split(const Vec3& a, const Vec3& b, const Vec3& c, double max_side, int depth, Visit& visit) {
-  const auto side = [](const Vec3& p, const Vec3& q) { return std::atan2(norm(cross(p, q)), dot(p, q)); };
-  if (depth < 8 && std::max({side(a, b), side(b, c), side(c, a)}) > max_side) {
+  if (depth < 8 && std::max({angle_between(a, b), angle_between(b, c), angle_between(c, a)}) > max_side) {
     // The midpoints of the three arcs: the children tile the spherical triangle exactly, and the
     // first keeps a as its first vertex.
     const Vec3 ab = normalized(a + b), bc = normalized(b + c), ca = normalized(c + a);

@@ -72,7 +72,6 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   rule.regions = coefficients.regions.size();
   static const quadrature::UnitGaussRule high = quadrature::gauss_legendre_unit(kCircumsolarOrderHigh),
                                          low = quadrature::gauss_legendre_unit(kCircumsolarOrderLow);
-  const auto angle = [](const Vec3& p, const Vec3& q) { return std::atan2(norm(cross(p, q)), dot(p, q)); };
   for (std::size_t r = 0; r < coefficients.regions.size(); ++r) {
     const SeenRegion& seen = coefficients.regions[r];
     const SeenTransmittance transmittance(scene, seen);
@@ -81,7 +80,7 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
       // The cap about the normalised centroid through the farthest vertex holds the triangle (a
       // cap under a hemisphere is convex); the sun is near when within that radius + the margin.
       piece.centre = normalized(a + b + c);
-      const double radius = std::max({angle(piece.centre, a), angle(piece.centre, b), angle(piece.centre, c)});
+      const double radius = std::max({angle_between(piece.centre, a), angle_between(piece.centre, b), angle_between(piece.centre, c)});
       piece.near_cos = std::cos(std::min(std::numbers::pi, radius + kCircumsolarMargin));
       // The sky has nothing below the horizon (the sum takes nodes above it only).
       DirectionNodes* nodes = &rule.high;

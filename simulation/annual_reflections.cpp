@@ -38,7 +38,6 @@ using NodeColumns = std::vector<std::pair<std::uint32_t, double>>;
 
 using Rule = quadrature::UnitGaussRule;
 
-double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 
 // The columns of every node of an operator.
 std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperator& op, const DirectionGrid& fine,

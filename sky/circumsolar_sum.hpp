@@ -32,17 +32,14 @@ struct DirectionNodes {
   std::size_t size() const noexcept { return weight.size(); }
 };
 
-// The sum above for the sky's sun s (unit) and coefficients a, b, c, d; t_min the floor on cos θ
-// (0 for the published model, Radiance's 0.01 under its clamps).
-double circumsolar_sum(const DirectionNodes& nodes, const Vec3& sun, double a, double b, double c, double d,
-                       double t_min) noexcept;
+// The sum above over the nodes [begin, end), for the sky's sun s (unit) and coefficients a, b, c,
+// d; t_min the floor on cos θ (0 for the published model, Radiance's 0.01 under its clamps).
+double circumsolar_sum(const DirectionNodes& nodes, std::size_t begin, std::size_t end, const Vec3& sun, double a,
+                       double b, double c, double d, double t_min) noexcept;
+
 // The term itself, c G(t) e^{dγ}, at n directions (values[i]; 0 where u_z ≤ 0): the integrand of
 // the adaptive cubature near the sun, given its 16 directions at a time.
 void circumsolar_values(const double* x, const double* y, const double* z, std::size_t n, const Vec3& sun, double a,
                         double b, double c, double d, double t_min, double* values) noexcept;
-
-// The same over the nodes [begin, end).
-double circumsolar_sum(const DirectionNodes& nodes, std::size_t begin, std::size_t end, const Vec3& sun, double a,
-                       double b, double c, double d, double t_min) noexcept;
 
 }  // namespace daylit
