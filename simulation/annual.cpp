@@ -190,6 +190,7 @@ AnnualSky annual_sky(const WeatherFile& weather, const Site& site, const AnnualO
     if (hour.sky) {
       ++out.sky_hours;
       out.floored_hours += hour.floored;
+      out.fixed_rule_hours += hour.perez->normalised_by_fixed_rule();
       out.max_fit_error = std::max(out.max_fit_error, hour.fit.bound_factor);
       for (const std::string& line : hour.perez->condition().clamps_applied) ++counts[clamp_kind(line)];
     } else if (hour.skipped.rfind("refused", 0) == 0) {

@@ -94,6 +94,7 @@ struct AnnualSky {
   std::vector<AnnualHour> hours;  // one per record, in file order
   std::vector<SkyPatch> patches;  // AnnualOptions::sky_patch_mf ≥ 1: the sky's patches
   std::size_t sky_hours = 0, floored_hours = 0, refused_hours = 0;
+  std::size_t fixed_rule_hours = 0;  // hours normalised by PerezSky's fixed rule (the others: adaptive)
   std::vector<std::pair<std::string, std::size_t>> clamp_counts;  // clamp line → hours it acted in
   double max_fit_error = 0;       // the largest ε_G (1 + |e|) over the hours
 };
