@@ -1,5 +1,6 @@
 #include "illumination/spherical_quadrature.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -52,26 +53,31 @@ RulePoints rule_points() {
 }
 const RulePoints kPoints = rule_points();
 
-// ∫ over the spherical triangle (signed by the orientation of a, b, c): the 16 directions found
-// first and the integrand called once for all of them.
-double rule(const Triangle& t, const DirectionBatch& g, long& evaluations) {
-  const Vec3 e1 = t.b - t.a, e2 = t.c - t.a;
-  const double det = dot(t.a, cross(e1, e2));  // signed: 2 × the planar area × distance term
-  std::array<double, 16> x, y, z, r3, values;
-  for (std::size_t k = 0; k < 16; ++k) {
-    const auto& l = kPoints.l[k];
-    const Vec3 p = l[0] * t.a + l[1] * t.b + l[2] * t.c;
-    // √(p·p), not norm()'s hypot: p is a combination of the region's directions, far from
-    // overflow, and hypot's care was a tenth of an annual run's time.
-    const double r = std::sqrt(dot(p, p));
-    x[k] = p.x / r, y[k] = p.y / r, z[k] = p.z / r;
-    r3[k] = r * r * r;
+// ∫ over each of `count` ≤ 4 spherical triangles (signed by the orientation of a, b, c): their
+// 16 directions each found first and the integrand called once for all of them.
+constexpr std::size_t kMaxBatch = 4;
+void rules(const Triangle* t, std::size_t count, const DirectionBatch& g, long& evaluations, double* out) {
+  std::array<double, 16 * kMaxBatch> x, y, z, inv_r3, values;
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t k = 0; k < 16; ++k) {
+      const auto& l = kPoints.l[k];
+      const Vec3 p = l[0] * t[i].a + l[1] * t[i].b + l[2] * t[i].c;
+      // √(p·p), not norm()'s hypot: p is a combination of the region's directions, far from
+      // overflow, and hypot's care was a tenth of an annual run's time.
+      const double inv = 1 / std::sqrt(dot(p, p));
+      const std::size_t j = 16 * i + k;
+      x[j] = p.x * inv, y[j] = p.y * inv, z[j] = p.z * inv;
+      inv_r3[j] = inv * inv * inv;
+    }
+  g(x.data(), y.data(), z.data(), 16 * count, values.data());
+  evaluations += long(16 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 e1 = t[i].b - t[i].a, e2 = t[i].c - t[i].a;
+    const double det = dot(t[i].a, cross(e1, e2));  // signed: 2 × the planar area × distance term
+    double sum = 0;
+    for (std::size_t k = 0; k < 16; ++k) sum += kPoints.w[k] * (values[16 * i + k] * inv_r3[16 * i + k]);
+    out[i] = 0.5 * det * sum;  // the reference triangle has area ½
   }
-  g(x.data(), y.data(), z.data(), 16, values.data());
-  evaluations += 16;
-  double sum = 0;
-  for (std::size_t k = 0; k < 16; ++k) sum += kPoints.w[k] * (values[k] / r3[k]);
-  return 0.5 * det * sum;  // the reference triangle has area ½
 }
 
 struct Adaptive {
@@ -85,8 +91,8 @@ struct Adaptive {
     const Vec3 ab = 0.5 * (t.a + t.b), bc = 0.5 * (t.b + t.c), ca = 0.5 * (t.c + t.a);
     const std::array<Triangle, 4> children{{{t.a, ab, ca}, {ab, t.b, bc}, {ca, bc, t.c}, {ab, bc, ca}}};
     std::array<double, 4> parts;
-    double fine = 0;
-    for (int i = 0; i < 4; ++i) fine += parts[i] = rule(children[i], g, evaluations);
+    rules(children.data(), 4, g, evaluations, parts.data());
+    const double fine = parts[0] + parts[1] + parts[2] + parts[3];
     const double difference = std::abs(fine - coarse);
     scale = std::max(scale, std::abs(fine));
     if (difference <= tolerance * scale || depth >= 16) {
@@ -104,15 +110,15 @@ struct Adaptive {
 QuadratureResult integrate_over_region(const SphericalRegion& region, const DirectionBatch& g, double tolerance) {
   Adaptive adaptive{g, tolerance};
   // A first pass fixes the scale against which every triangle's agreement is judged.
-  std::vector<std::pair<Triangle, double>> fan;
+  std::vector<Triangle> fan;
   for (const DirectionLoop& loop : region.loops)
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      const Triangle t{loop[0], loop[i], loop[i + 1]};
-      fan.emplace_back(t, rule(t, g, adaptive.evaluations));
-    }
-  for (const auto& [t, coarse] : fan) adaptive.scale += std::abs(coarse);
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i) fan.push_back({loop[0], loop[i], loop[i + 1]});
+  std::vector<double> coarse(fan.size());
+  for (std::size_t i = 0; i < fan.size(); i += kMaxBatch)
+    rules(fan.data() + i, std::min(kMaxBatch, fan.size() - i), g, adaptive.evaluations, coarse.data() + i);
+  for (double c : coarse) adaptive.scale += std::abs(c);
   double value = 0;
-  for (const auto& [t, coarse] : fan) value += adaptive.integrate(t, coarse, 0);
+  for (std::size_t i = 0; i < fan.size(); ++i) value += adaptive.integrate(fan[i], coarse[i], 0);
   return {value, adaptive.error, adaptive.evaluations};
 }
 

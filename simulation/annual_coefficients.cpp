@@ -1,6 +1,7 @@
 #include "simulation/annual_coefficients.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -102,15 +103,26 @@ void SeenTransmittance::multiply(const double* x, const double* y, const double*
                                  double* values) const noexcept {
   if (along_) {
     for (std::size_t i = 0; i < n; ++i) values[i] *= (*along_)(Vec3{x[i], y[i], z[i]});
-  } else if (angular_ != nullptr) {
-    // Horner's rule inline (evaluate_polynomial's, without a call per direction).
+  } else if (angular_ != nullptr && !angular_->empty()) {
+    // Horner's rule (evaluate_polynomial's arithmetic, in the same order), a block of directions
+    // at a time with the loop over directions innermost: each direction's chain of multiply-adds
+    // is sequential, the block's chains are independent and run side by side.
     const std::vector<double>& c = *angular_;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double mu = std::abs(axis_.x * x[i] + axis_.y * y[i] + axis_.z * z[i]);
-      double t = 0;
-      for (auto k = c.rbegin(); k != c.rend(); ++k) t = t * mu + *k;
-      values[i] *= t;
+    constexpr std::size_t kBlock = 64;
+    std::array<double, kBlock> mu, t;
+    for (std::size_t start = 0; start < n; start += kBlock) {
+      const std::size_t m = std::min(kBlock, n - start);
+      for (std::size_t i = 0; i < m; ++i) {
+        const std::size_t j = start + i;
+        mu[i] = std::abs(axis_.x * x[j] + axis_.y * y[j] + axis_.z * z[j]);
+        t[i] = c.back();
+      }
+      for (std::size_t k = c.size() - 1; k-- > 0;)
+        for (std::size_t i = 0; i < m; ++i) t[i] = t[i] * mu[i] + c[k];
+      for (std::size_t i = 0; i < m; ++i) values[start + i] *= t[i];
     }
+  } else if (angular_ != nullptr) {
+    for (std::size_t i = 0; i < n; ++i) values[i] *= 0.0;  // the zero polynomial
   } else {
     for (std::size_t i = 0; i < n; ++i) values[i] *= constant_;
   }
@@ -214,21 +226,11 @@ SmoothSkyFit fit_smooth_sky(double a, double b, double e, double min_cos_theta, 
   for (int k = 0; k <= degree; ++k)
     for (int f = 0; f < kAnnualBasisFamilies; ++f)
       fit.coefficients[std::size_t(annual_basis_index(f, k, degree))] = family[f] * g[std::size_t(k)];
-  // The sampled maximum error of p: an even grid, and the clamp's kink where there is one.
-  const auto p = [&](double t) {
-    const double x = 2 * t - 1;
-    double t0 = 1, t1 = x, sum = g[0] + (n > 1 ? g[1] * x : 0);
-    for (int k = 2; k < n; ++k) {
-      const double t2 = 2 * x * t1 - t0;
-      sum += g[std::size_t(k)] * t2;
-      t0 = t1;
-      t1 = t2;
-    }
-    return sum;
-  };
+  // The sampled maximum error of p: an even grid, and the clamp's kink where there is one. p by
+  // the three-term recurrence T_{k+1} = 2x T_k − T_{k−1}, a block of samples at a time with the
+  // loop over samples innermost (their recurrences are independent and run side by side).
   fit.bound_by_bin.assign(kFitErrorBins, 0.0);
-  const auto sample = [&](double t) {
-    const double error = std::abs(p(t) - gradation(t));
+  const auto record = [&](double t, double error) {
     const int bin = std::min(kFitErrorBins - 1, int(t * kFitErrorBins));
     fit.bound_by_bin[std::size_t(bin)] = std::max(fit.bound_by_bin[std::size_t(bin)], error);
     // A bin's edge belongs to both bins that meet there.
@@ -236,8 +238,31 @@ SmoothSkyFit fit_smooth_sky(double a, double b, double e, double min_cos_theta, 
       fit.bound_by_bin[std::size_t(bin - 1)] = std::max(fit.bound_by_bin[std::size_t(bin - 1)], error);
     fit.gradation_max_error = std::max(fit.gradation_max_error, error);
   };
-  for (int i = 0; i <= 64 * kFitErrorBins; ++i) sample(double(i) / (64 * kFitErrorBins));
-  if (min_cos_theta > 0) sample(min_cos_theta);
+  std::vector<double> samples;
+  for (int i = 0; i <= 64 * kFitErrorBins; ++i) samples.push_back(double(i) / (64 * kFitErrorBins));
+  if (min_cos_theta > 0) samples.push_back(min_cos_theta);
+  constexpr std::size_t kBlock = 64;
+  std::array<double, kBlock> x, t0, t1, sum;
+  for (std::size_t start = 0; start < samples.size(); start += kBlock) {
+    const std::size_t m = std::min(kBlock, samples.size() - start);
+    for (std::size_t i = 0; i < m; ++i) {
+      x[i] = 2 * samples[start + i] - 1;
+      t0[i] = 1;
+      t1[i] = x[i];
+      sum[i] = g[0] + (n > 1 ? g[1] * x[i] : 0);
+    }
+    for (int k = 2; k < n; ++k)
+      for (std::size_t i = 0; i < m; ++i) {
+        const double t2 = 2 * x[i] * t1[i] - t0[i];
+        sum[i] += g[std::size_t(k)] * t2;
+        t0[i] = t1[i];
+        t1[i] = t2;
+      }
+    for (std::size_t i = 0; i < m; ++i) {
+      const double t = samples[start + i];
+      record(t, std::abs(sum[i] - gradation(t)));
+    }
+  }
   for (double& b : fit.bound_by_bin) b *= 1 + std::abs(e);
   fit.bound_factor = fit.gradation_max_error * (1 + std::abs(e));
   return fit;
