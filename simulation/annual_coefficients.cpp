@@ -75,56 +75,57 @@ void extend_uz_range(const SphericalRegion& region, double& lo, double& hi) {
 
 }  // namespace
 
-double aperture_transmittance(const Aperture& aperture, const Vec3& u) {
-  if (aperture.angular_transmittance.empty()) return aperture.transmittance;
-  const Vec3 pane = normalized(newell_normal(aperture.polygon.vertices));
-  return evaluate_polynomial(aperture.angular_transmittance, std::abs(dot(pane, u)));
-}
-
-SeenTransmittance::SeenTransmittance(const Scene& scene, const SeenRegion& seen) {
-  if (seen.through) {
-    along_.emplace(scene, std::size_t(seen.aperture), seen.panes);
-    return;
-  }
-  const Aperture& aperture = scene.apertures[std::size_t(seen.aperture)];
-  constant_ = aperture.transmittance;
+ApertureTransmittance::ApertureTransmittance(const Aperture& aperture) : constant_(aperture.transmittance) {
   if (aperture.angular_transmittance.empty()) return;
   axis_ = normalized(newell_normal(aperture.polygon.vertices));
   angular_ = &aperture.angular_transmittance;
 }
 
-double SeenTransmittance::operator()(const Vec3& u) const noexcept {
-  if (along_) return (*along_)(u);
-  if (angular_ != nullptr) return evaluate_polynomial(*angular_, std::abs(dot(axis_, u)));
-  return constant_;
+double ApertureTransmittance::operator()(const Vec3& u) const noexcept {
+  return angular_ != nullptr ? evaluate_polynomial(*angular_, std::abs(dot(axis_, u))) : constant_;
 }
+
+SeenTransmittance::SeenTransmittance(const Scene& scene, const SeenRegion& seen) {
+  if (seen.through)
+    along_.emplace(scene, std::size_t(seen.aperture), seen.panes);
+  else
+    aperture_.emplace(scene.apertures[std::size_t(seen.aperture)]);
+}
+
+double SeenTransmittance::operator()(const Vec3& u) const noexcept { return along_ ? (*along_)(u) : (*aperture_)(u); }
 
 void SeenTransmittance::multiply(const double* x, const double* y, const double* z, std::size_t n,
                                  double* values) const noexcept {
   if (along_) {
     for (std::size_t i = 0; i < n; ++i) values[i] *= (*along_)(Vec3{x[i], y[i], z[i]});
-  } else if (angular_ != nullptr && !angular_->empty()) {
-    // Horner's rule (evaluate_polynomial's arithmetic, in the same order), a block of directions
-    // at a time with the loop over directions innermost: each direction's chain of multiply-adds
-    // is sequential, the block's chains are independent and run side by side.
-    const std::vector<double>& c = *angular_;
-    constexpr std::size_t kBlock = 64;
-    std::array<double, kBlock> mu, t;
-    for (std::size_t start = 0; start < n; start += kBlock) {
-      const std::size_t m = std::min(kBlock, n - start);
-      for (std::size_t i = 0; i < m; ++i) {
-        const std::size_t j = start + i;
-        mu[i] = std::abs(axis_.x * x[j] + axis_.y * y[j] + axis_.z * z[j]);
-        t[i] = c.back();
-      }
-      for (std::size_t k = c.size() - 1; k-- > 0;)
-        for (std::size_t i = 0; i < m; ++i) t[i] = t[i] * mu[i] + c[k];
-      for (std::size_t i = 0; i < m; ++i) values[start + i] *= t[i];
-    }
-  } else if (angular_ != nullptr) {
+    return;
+  }
+  const std::vector<double>* angular = aperture_->angular();
+  if (angular == nullptr) {
+    for (std::size_t i = 0; i < n; ++i) values[i] *= aperture_->constant();
+    return;
+  }
+  // Horner's rule (evaluate_polynomial's arithmetic, in the same order), a block of directions
+  // at a time with the loop over directions innermost: each direction's chain of multiply-adds
+  // is sequential, the block's chains are independent and run side by side.
+  const std::vector<double>& c = *angular;
+  const Vec3& axis = aperture_->axis();
+  if (c.empty()) {
     for (std::size_t i = 0; i < n; ++i) values[i] *= 0.0;  // the zero polynomial
-  } else {
-    for (std::size_t i = 0; i < n; ++i) values[i] *= constant_;
+    return;
+  }
+  constexpr std::size_t kBlock = 64;
+  std::array<double, kBlock> mu, t;
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    const std::size_t m = std::min(kBlock, n - start);
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t j = start + i;
+      mu[i] = std::abs(axis.x * x[j] + axis.y * y[j] + axis.z * z[j]);
+      t[i] = c.back();
+    }
+    for (std::size_t k = c.size() - 1; k-- > 0;)
+      for (std::size_t i = 0; i < m; ++i) t[i] = t[i] * mu[i] + c[k];
+    for (std::size_t i = 0; i < m; ++i) values[start + i] *= t[i];
   }
 }
 

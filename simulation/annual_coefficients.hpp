@@ -67,6 +67,22 @@ struct SeenRegion {
   const Aperture& transmitting(const Scene& scene) const { return through ? *through : scene.apertures[std::size_t(aperture)]; }
 };
 
+// The transmittance factor of an aperture for direction u: τ, or glass's T(|a·u|), a the pane's
+// unit normal, found once (a many-sided pane's Newell normal is not cheap per direction).
+class ApertureTransmittance {
+ public:
+  explicit ApertureTransmittance(const Aperture& aperture);
+  double operator()(const Vec3& u) const noexcept;
+  const Vec3& axis() const noexcept { return axis_; }
+  const std::vector<double>* angular() const noexcept { return angular_; }  // null: constant
+  double constant() const noexcept { return constant_; }
+
+ private:
+  double constant_ = 1;
+  Vec3 axis_{};
+  const std::vector<double>* angular_ = nullptr;
+};
+
 // The transmittance of a seen region along a direction u: the aperture's τ or T(|a·u|), or, seen
 // through panes, every pane's T at its own cosine of incidence (TransmittanceAlong). Exact where
 // `through`'s combined polynomial is not: that takes a pane not parallel to the aperture as
@@ -79,14 +95,12 @@ class SeenTransmittance {
   // values[i] *= T(u_i) for n directions given as coordinate arrays (a batch of the cubature).
   void multiply(const double* x, const double* y, const double* z, std::size_t n, double* values) const noexcept;
   // The same value along every direction (an open aperture): value() then.
-  bool constant() const noexcept { return !along_ && angular_ == nullptr; }
-  double value() const noexcept { return constant_; }
+  bool constant() const noexcept { return aperture_ && aperture_->angular() == nullptr; }
+  double value() const noexcept { return aperture_ ? aperture_->constant() : 1.0; }
 
  private:
-  double constant_ = 1;
-  Vec3 axis_{};                                  // the glass's unit normal
-  const std::vector<double>* angular_ = nullptr;  // its T(μ)
-  std::optional<TransmittanceAlong> along_;       // through panes
+  std::optional<ApertureTransmittance> aperture_;  // the aperture's own (seen directly)
+  std::optional<TransmittanceAlong> along_;        // through panes
 };
 
 // What one sensor sees, once.
@@ -117,9 +131,6 @@ std::vector<SensorCoefficients> annual_coefficients(const VisibilityEngine& engi
 // One sensor's coefficients (no threading).
 SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
                                        const WindowGroups& groups, int degree, VisibilityCounters& counters);
-
-// The transmittance factor of an aperture for direction u: τ, or glass's T(|a·u|) (a the pane's normal).
-double aperture_transmittance(const Aperture& aperture, const Vec3& u);
 
 // The smooth part of one hour's sky in the basis: coefficients c_j with Σ c_j φ_j(u) = p(u_z)(1 + e(s·u)²),
 // p the degree-D Chebyshev interpolant of G(t) = 1 + a·exp(b / max(t, t_min)) on [0, 1] (t_min = 0 for

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "illumination/cap_clip.hpp"
 #include "illumination/fan_product_rule.hpp"
@@ -55,8 +56,10 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
       const std::size_t channel = view.aperture >= 0 ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
       double* row = acc.data() + channel * width;
       const Aperture* aperture = view.transmitting(scene);
+      std::optional<ApertureTransmittance> through;
+      if (aperture != nullptr) through.emplace(*aperture);
       // A count taken back (LightView::sign) enters negated.
-      const auto transmittance = [&](const Vec3& u) { return view.sign * (aperture ? aperture_transmittance(*aperture, u) : 1.0); };
+      const auto transmittance = [&](const Vec3& u) { return view.sign * (through ? (*through)(u) : 1.0); };
       row[columns.ground_at()] += view.sign * view.ground;
       if (view.above.empty()) continue;
       // The sky: the hat functions of both grids.
@@ -109,10 +112,12 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
 
 // A cap around each view's region (its vertices' mean direction, the largest angle to them; a
 // whole hemisphere where that reaches 81°, since a cap is convex only below 90°), so that an hour's
-// sun far from it is left out before the exact cut.
+// sun far from it is left out before the exact cut: a sun whose centre is more than the radius and
+// the sun's diameter away, i.e. s·centre < cos_reach (a dot per node, view and hour, no arc).
 struct ViewCap {
   Vec3 centre{0, 0, 1};
   double radius = kPi;
+  double cos_reach = -2;  // cos(radius + 2ρ_sun); −2: nothing is left out
 };
 std::vector<std::vector<ViewCap>> view_caps(const ReflectionOperator& op) {
   std::vector<std::vector<ViewCap>> caps(op.nodes.size());
@@ -127,7 +132,10 @@ std::vector<std::vector<ViewCap>> view_caps(const ReflectionOperator& op) {
         double r = 0;
         for (const DirectionLoop& loop : view.above.loops)
           for (const Vec3& p : loop) r = std::max(r, angle_between(cap.centre, p));
-        if (r < 0.45 * kPi) cap.radius = r;
+        if (r < 0.45 * kPi) {
+          cap.radius = r;
+          cap.cos_reach = std::cos(r + 2 * kSunHalfAngleDeg * kPi / 180);
+        }
       }
       caps[k].push_back(cap);
     }
@@ -149,13 +157,13 @@ void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const st
       const LightView& view = node.views[v];
       if (view.above.empty()) continue;
       const ViewCap& cap = caps[k][v];
-      if (cap.radius < kPi && angle_between(cap.centre, sun) > cap.radius + 2 * rho) continue;
+      if (dot(cap.centre, sun) < cap.cos_reach) continue;
       const double visible = cap_lambert(view.above, sun, rho, node.normal);
       if (visible == 0) continue;
       const Aperture* a = view.transmitting(scene);
       const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
       const double t = a == nullptr         ? 1.0
-                       : view.panes.empty() ? aperture_transmittance(*a, sun)
+                       : view.panes.empty() ? ApertureTransmittance(*a)(sun)
                                             : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
       out[channel](Eigen::Index(k), column) += view.sign * radiance * visible * t;
     }
@@ -216,7 +224,7 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
     return fine.vertex(2 * int(v / std::size_t(coarse.columns)), 2 * int(v % std::size_t(coarse.columns)));
   };
   const Columns columns{fine.vertices(), coarse.vertices()};
-  const std::size_t width = columns.size(), apertures = scene.apertures.size();
+  const std::size_t apertures = scene.apertures.size();
 
   // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun, the
   // views' caps.
@@ -251,56 +259,70 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
     directions[v] = fine.direction(v);
     if (v < std::size_t(fine.columns)) directions[v] = normalized(directions[v] + Vec3{0, 0, 1e-9});
   }
-  // Blocks of hours: column 2b of F is the hour's sky on the fine grid, 2b + 1 on the coarse one
-  // (the far ground in both); the sun's first bounce per node and hour, exact.
+  // Blocks of hours, a column per hour: the sky on the fine grid's and on the coarse grid's
+  // directions and the far ground; the sun's first bounce per node and hour, exact. The fine
+  // mesh takes both grids' skies (their difference is one term of the estimate); the coarse mesh,
+  // compared with the fine one under the same sky, only the fine grid's.
+  const Eigen::Index nf = Eigen::Index(columns.fine), nc = Eigen::Index(columns.coarse);
+  const Eigen::Index coarse_at = Eigen::Index(columns.coarse_at()), ground_at = Eigen::Index(columns.ground_at());
   constexpr std::size_t kBlock = 128;
   for (std::size_t start = 0; start < lit.size(); start += kBlock) {
     const std::size_t count = std::min(kBlock, lit.size() - start);
-    Eigen::MatrixXd f = Eigen::MatrixXd::Zero(Eigen::Index(width), Eigen::Index(2 * count));
+    const Eigen::Index hours = Eigen::Index(count);
+    Eigen::MatrixXd sky_fine(nf, hours), sky_coarse(nc, hours);
+    Eigen::RowVectorXd ground(hours);
     tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
       const HourLight& hour = sky_hours[lit[start + b]];
-      const Eigen::Index cf = Eigen::Index(2 * b), cc = cf + 1;
-      for (std::size_t v = 0; v < fine.vertices(); ++v) f(Eigen::Index(v), cf) = hour.luminance(directions[v]);
+      const Eigen::Index c = Eigen::Index(b);
+      for (std::size_t v = 0; v < fine.vertices(); ++v) sky_fine(Eigen::Index(v), c) = hour.luminance(directions[v]);
       for (std::size_t v = 0; v < coarse.vertices(); ++v)
-        f(Eigen::Index(columns.coarse_at() + v), cc) = f(Eigen::Index(coarse_to_fine(v)), cf);
-      f(Eigen::Index(columns.ground_at()), cf) = f(Eigen::Index(columns.ground_at()), cc) =
-          ground_reflectance * hour.horizontal_lux / kPi;
+        sky_coarse(Eigen::Index(v), c) = sky_fine(Eigen::Index(coarse_to_fine(v)), c);
+      ground(c) = ground_reflectance * hour.horizontal_lux / kPi;
     });
-    std::vector<Eigen::MatrixXd> totals;  // per mesh: sensors × 2·count
+    std::vector<Eigen::MatrixXd> totals_fine, totals_coarse;  // per mesh: sensors × count
     for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
       const Mesh& m = meshes[mi];
+      const bool both_grids = mi == 0;
       const std::size_t n = m.op->nodes.size();
-      std::vector<Eigen::MatrixXd> sun(groups + 1, Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(count)));
+      std::vector<Eigen::MatrixXd> sun(groups + 1, Eigen::MatrixXd::Zero(Eigen::Index(n), hours));
       tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
         const HourLight& hour = sky_hours[lit[start + b]];
         if (hour.direct_normal_lux > 0)
           sun_first_bounce(scene, *m.op, m.caps, group_of_aperture, groups, hour.sun, hour.direct_normal_lux, sun,
                            Eigen::Index(b));
       });
-      Eigen::MatrixXd total = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), Eigen::Index(2 * count));
+      Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
+      if (both_grids) total_coarse = total_fine;
       for (std::size_t g = 0; g <= groups; ++g) {
-        Eigen::MatrixXd r = m.d[g] * f;
-        if (n > 0) {
+        const RowMatrix& d = m.d[g];
+        Eigen::MatrixXd r_fine = d.leftCols(nf) * sky_fine + d.col(ground_at) * ground, r_coarse;
+        if (both_grids) r_coarse = d.middleCols(coarse_at, nc) * sky_coarse + d.col(ground_at) * ground;
+        // The sun's part: W times the sun's first bounce, on the nodes the sun reaches in the block
+        // (a window's sun patch: most nodes get none).
+        std::vector<Eigen::Index> lit_nodes;
+        for (Eigen::Index k = 0; k < Eigen::Index(n); ++k)
+          if (!sun[g].row(k).isZero(0)) lit_nodes.push_back(k);
+        if (!lit_nodes.empty()) {
           const Eigen::Map<const RowMatrix> w(m.op->response[grid_index].data(), Eigen::Index(out.sensors), Eigen::Index(n));
-          const Eigen::MatrixXd rs = w * sun[g];
-          for (std::size_t b = 0; b < count; ++b) {
-            r.col(Eigen::Index(2 * b)) += rs.col(Eigen::Index(b));
-            r.col(Eigen::Index(2 * b + 1)) += rs.col(Eigen::Index(b));
-          }
+          const Eigen::MatrixXd rs = w(Eigen::all, lit_nodes) * sun[g](lit_nodes, Eigen::all);
+          r_fine += rs;
+          if (both_grids) r_coarse += rs;
         }
-        total += r;
+        total_fine += r_fine;
+        if (both_grids) total_coarse += r_coarse;
         if (mi == 0)
           for (std::size_t s = 0; s < out.sensors; ++s)
             for (std::size_t b = 0; b < count; ++b)
-              out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r(Eigen::Index(s), Eigen::Index(2 * b)));
+              out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r_fine(Eigen::Index(s), Eigen::Index(b)));
       }
-      totals.push_back(std::move(total));
+      totals_fine.push_back(std::move(total_fine));
+      totals_coarse.push_back(std::move(total_coarse));
     }
     for (std::size_t s = 0; s < out.sensors; ++s)
       for (std::size_t b = 0; b < count; ++b) {
-        const Eigen::Index i = Eigen::Index(s), cf = Eigen::Index(2 * b);
-        double e = std::abs(totals[0](i, cf) - totals[0](i, cf + 1));
-        if (totals.size() > 1) e += std::abs(totals[0](i, cf) - totals[1](i, cf));
+        const Eigen::Index i = Eigen::Index(s), c = Eigen::Index(b);
+        double e = std::abs(totals_fine[0](i, c) - totals_coarse[0](i, c));
+        if (totals_fine.size() > 1) e += std::abs(totals_fine[0](i, c) - totals_fine[1](i, c));
         out.estimate[s * out.hours + lit[start + b]] = float(e);
       }
   }

@@ -163,7 +163,7 @@ TEST_CASE("annual reflections: the sun's first bounce is exact, on and off the d
     ReflectionOptions os = o;
     os.light = [&](const SphericalRegion& above, const Vec3& n, const Aperture* a) {
       const double l = e_dn / (kPi * std::sin(rho) * std::sin(rho));
-      const double t = a != nullptr ? aperture_transmittance(*a, sun) : 1.0;
+      const double t = a != nullptr ? ApertureTransmittance(*a)(sun) : 1.0;
       return l * t * cap_lambert(above, sun, rho, n);
     };
     os.light_horizontal = e_dn * sun.z;
