@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -98,14 +99,35 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
                                                                         : (nodes > 0 ? w.size() / nodes : 0);
   const std::size_t width = columns.size();
   std::vector<RowMatrix> d(groups + 1, RowMatrix::Zero(Eigen::Index(sensors), Eigen::Index(width)));
-  tbb::parallel_for(std::size_t(0), sensors, [&](std::size_t s) {
+  // Q's entries as (channel, column) once: the loop below visits each sensors-times over.
+  struct Entry {
+    std::uint32_t channel, column;
+    double value;
+  };
+  std::vector<std::vector<Entry>> entries(nodes);
+  for (std::size_t k = 0; k < nodes; ++k)
+    for (const auto& [c, v] : q[k]) entries[k].push_back({std::uint32_t(c / width), std::uint32_t(c % width), v});
+  // A block of sensors at a time: Q (tens of MB) is read once per block, not once per sensor.
+  constexpr std::size_t kSensorBlock = 8;
+  tbb::parallel_for(std::size_t(0), (sensors + kSensorBlock - 1) / kSensorBlock, [&](std::size_t block) {
+    const std::size_t first = block * kSensorBlock, count = std::min(kSensorBlock, sensors - first);
+    std::vector<double*> row((groups + 1) * count);
+    for (std::size_t j = 0; j < count; ++j)
+      for (std::size_t c = 0; c <= groups; ++c) row[c * count + j] = d[c].row(Eigen::Index(first + j)).data();
+    std::array<double, kSensorBlock> wk{};
     for (std::size_t k = 0; k < nodes; ++k) {
-      const double wk = w[s * nodes + k];
-      if (wk == 0) continue;
-      for (const auto& [c, v] : q[k]) d[c / width](Eigen::Index(s), Eigen::Index(c % width)) += wk * v;
+      bool any = false;
+      for (std::size_t j = 0; j < count; ++j) any |= (wk[j] = w[(first + j) * nodes + k]) != 0;
+      if (!any) continue;
+      for (const Entry& e : entries[k]) {
+        double* const* rows = row.data() + e.channel * count;
+        for (std::size_t j = 0; j < count; ++j) rows[j][e.column] += wk[j] * e.value;
+      }
     }
-    for (std::size_t a = 0; a < apertures; ++a)
-      d[std::size_t(group_of_aperture[a])](Eigen::Index(s), Eigen::Index(columns.ground_at())) += ground[s * apertures + a];
+    for (std::size_t j = 0; j < count; ++j)
+      for (std::size_t a = 0; a < apertures; ++a)
+        d[std::size_t(group_of_aperture[a])](Eigen::Index(first + j), Eigen::Index(columns.ground_at())) +=
+            ground[(first + j) * apertures + a];
   });
   return d;
 }

@@ -98,3 +98,36 @@ TEST_CASE("a frame with a hole: the winding number weights the disk's circle") {
   half_hole.loops.push_back(edge_hole);
   CHECK(cap_lambert(half_hole, z, sun_half_angle, z) == Approx(full / 2).epsilon(1e-12));
 }
+
+TEST_CASE("a disk clear of every edge: inside or outside a non-convex loop, two pieces, a loop given twice") {
+  // No edge's great circle comes within ρ of the sun here, so the winding number about the sun
+  // decides alone (the path without arcs); where an edge's circle does, the general path.
+  const Vec3 z{0, 0, 1};
+  const double full = pi * std::sin(sun_half_angle) * std::sin(sun_half_angle);
+  // An L: [−1, 1] × [−1, 0] and [−1, 0] × [0, 1] as one loop, seen from the sensor at the origin.
+  const auto l_shape = [](double dx, double dy) {
+    return directions_through({{-1 - dx, -1 - dy, 1},
+                               {1 - dx, -1 - dy, 1},
+                               {1 - dx, -dy, 1},
+                               {-dx, -dy, 1},
+                               {-dx, 1 - dy, 1},
+                               {-1 - dx, 1 - dy, 1}},
+                              {});
+  };
+  // Shifted by −(dx, dy), the sun (on the axis) lies in the notch, the corner square, the upper arm.
+  CHECK(cap_lambert(l_shape(0.5, 0.5), z, sun_half_angle, z) == 0);
+  CHECK(cap_lambert(l_shape(-0.5, -0.5), z, sun_half_angle, z) == Approx(full).epsilon(1e-13));
+  CHECK(cap_lambert(l_shape(-0.5, 0.5), z, sun_half_angle, z) == Approx(full).epsilon(1e-13));
+  // Two pieces side by side, the sun in the second; the same loop twice counts twice.
+  SphericalRegion pieces = window(-1, -0.2, -1, 1);
+  pieces.loops.push_back(window(-0.2, 1, -1, 1).loops[0]);
+  CHECK(cap_lambert(pieces, z, sun_half_angle, z) == Approx(full).epsilon(1e-13));
+  SphericalRegion twice = window(-1, 1, -1, 1);
+  twice.loops.push_back(twice.loops[0]);
+  CHECK(cap_lambert(twice, z, sun_half_angle, z) == Approx(2 * full).epsilon(1e-13));
+  // A tilted sun and receiver, the window far from the zenith.
+  const Vec3 s = normalized(Vec3{1, 0.3, 1});
+  const Vec3 n = normalized(Vec3{0.2, 0.1, 1});
+  CHECK(cap_lambert(window(0.5, 1.5, -0.5, 1), s, sun_half_angle, n) == Approx(full * dot(n, s)).epsilon(1e-13));
+  CHECK(cap_lambert(window(1.2, 1.5, -0.5, 1), s, sun_half_angle, n) == 0);
+}
