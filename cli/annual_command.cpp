@@ -51,6 +51,13 @@ struct AnnualCommandOptions {
   bool quiet = false;
 };
 
+// A reflection operator's stages as the summary lists them (df's `stages`: stage, wall_s).
+nlohmann::json stage_times(const std::vector<ReflectionResult::StageTime>& stages) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : stages) out.push_back({{"stage", s.stage}, {"wall_s", s.wall_s}});
+  return out;
+}
+
 // One path per grid: the given path for one grid, else with the grid's name inserted.
 std::string per_grid(const std::string& path, const std::string& grid, std::size_t grids) {
   return image_path_for(path, grid, grids);
@@ -247,7 +254,7 @@ int run_annual(AnnualCommandOptions opt) {
          "the radiosity of `daylit df --components all` written as a linear map W (sensor x mesh node, by a dense LU); "
          "each node's first bounce per hour from the sky (its luminance interpolated bilinearly on a grid of directions, "
          "the grid's hat functions integrated over the node's exactly visible regions by a product Gauss rule), the "
-         "sun's disk (exact at the grid's directions near the year's sun, interpolated bilinearly at the true sun) and "
+         "sun's disk (cut exactly by each node's visible regions, every hour) and "
          "the far ground (rho_g E_h / pi, exact); blinds scale the light each window group lets in"},
         {"direction_grid", {{"altitude_step_deg", 90.0 / direction_grid.rows},
                             {"azimuth_step_deg", 360.0 / direction_grid.columns},
@@ -261,7 +268,9 @@ int run_annual(AnnualCommandOptions opt) {
                   {"surface_sides_left_out", fine_op->sides_left_out}}},
         {"left_out", {{"specular", "specular parts of plastic and metal, and the reflection of glass and trans panes, "
                                    "are reflected diffusely (see materials; their energy is kept)"}}},
-        {"run_time_s", {{"operators", operator_time}, {"hours", reflected_hours_time}}}};
+        {"run_time_s", {{"operators", operator_time}, {"hours", reflected_hours_time}}},
+        {"run_time_by_stage",
+         {{"reported_mesh_operator", stage_times(fine_op->stages)}, {"coarse_mesh_operator", stage_times(coarse_op->stages)}}}};
   } else {
     summary["components"] = {
         {"computed", {"sky_direct", "sun_direct"}},

@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libcgal-dev libgmp-dev libmpfr-dev   # exact geometry (CGAL over GMP rationals), correct rounding
-  libeigen3-dev                        # dense LU: the reflected components as a linear map (annual runs)
+  libeigen3-dev                        # dense matrices: the reflected components as a linear map (annual runs)
+  libopenblas-openmp-dev               # that map's dense LU (LAPACK's dgetrf), OpenMP threads as Eigen's
   libgsl-dev                           # the Clausen integral; adaptive Gauss–Kronrod quadrature
   libtbb-dev                           # threads
   libopenimageio-dev fonts-dejavu-core # falsecolour images and their legends

@@ -14,6 +14,7 @@
 
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
+#include "simulation/dense_lu.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/pane_transmittance.hpp"
 #include "simulation/radiosity_solver.hpp"
@@ -1254,6 +1255,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
                                        const std::vector<const SensorGrid*>* response_grids) {
   double rho_max = 0;
   const ReflectionOptions opt = checked_options(scene, reflectance, grids, options, rho_max);
+  auto clock = std::chrono::steady_clock::now();
   ReflectionOperator op;
   op.element_size = opt.element_size * (coarse ? 2 : 1);
   Transport t(scene, reflectance, engine, grids, opt, 2.0, false);
@@ -1301,11 +1303,13 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
         }
       });
   for (const auto& l : row_locals) op.counters += l;
+  op.stages.push_back({"rows (every node's views and transport)", lap(clock)});
   if (opt.reciprocal_transport) {
     std::vector<double> weight(nu, 0.0);
     for (std::size_t u = 0; u < nu; ++u)
       if (index[u] >= 0) weight[u] = mesh.elements[u / 6].area / 3;
     op.reciprocity = make_reciprocal(rows, weight);
+    op.stages.push_back({"reciprocity", lap(clock)});
   }
 
   // (I − ρK)ᵀ, factorised in place.
@@ -1318,13 +1322,14 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     for (const auto& [j, c] : rows[u]) a(index[j], Eigen::Index(i)) -= rho[i] * c;
   }
   rows.clear();
-  // Eigen's own threads (OpenMP, where built with it) as many as the run's (--threads).
-  Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());
-  Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(a);
+  // OpenBLAS's threads as many as the run's (--threads).
+  const DenseLU lu(std::move(a), tbb::this_task_arena::max_concurrency());
+  op.stages.push_back({"dense LU of " + std::to_string(n) + " nodes", lap(clock)});
 
   if (response_grids != nullptr && response_grids->size() != grids.size())
     throw Error("reflection_operator: the response grids are not as many as the grids");
   const std::vector<const SensorGrid*>& responses = response_grids != nullptr ? *response_grids : grids;
+  double sensor_time = 0, solve_time = 0;
   std::size_t before = 0, sensors = 0;
   for (const SensorGrid* g : responses) sensors += g->sensors.size();
   const ProgressCallback progress = stage_progress(opt, "reflections at the sensors", "sensors", sensors);
@@ -1346,15 +1351,19 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
                   });
     });
     for (const auto& l : locals) op.counters += l;
+    sensor_time += lap(clock);
     std::vector<double> w(m * n, 0.0);
     if (n > 0) {
-      const Eigen::MatrixXd z = lu.solve(st);
+      const Eigen::MatrixXd z = lu.solve(std::move(st));
       for (std::size_t s = 0; s < m; ++s)
         for (std::size_t k = 0; k < n; ++k) w[s * n + k] = rho[k] * z(Eigen::Index(k), Eigen::Index(s));
     }
+    solve_time += lap(clock);
     op.response.push_back(std::move(w));
     op.sensor_ground.push_back(std::move(ground));
   }
+  op.stages.push_back({"sensors' views and transport", sensor_time});
+  op.stages.push_back({"solves for the sensors' rows of W", solve_time});
   return op;
 }
 

@@ -194,6 +194,7 @@ struct ReflectionOperator {
   std::size_t sides_solved = 0, sides_left_out = 0;
   ReciprocityReport reciprocity;
   VisibilityCounters counters;
+  std::vector<ReflectionResult::StageTime> stages;  // where the time went, in order
 };
 // The mesh is reflected_components' reported one (the uniform split of a mesh of elements twice
 // the asked size), or with `coarse` that mesh of twice the size itself, for the same error
