@@ -17,6 +17,7 @@
 #include "illumination/cap_clip.hpp"
 #include "illumination/fan_product_rule.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "simulation/direction_angles.hpp"
 #include "simulation/illuminance.hpp"
 #include "simulation/pane_transmittance.hpp"
 
@@ -50,6 +51,12 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
   const std::size_t width = columns.size(), total = (groups + 1) * width;
   std::vector<NodeColumns> out(op.nodes.size());
   tbb::enumerable_thread_specific<std::vector<double>> scratch([total] { return std::vector<double>(total, 0.0); });
+  // One fan triangle's rule nodes: direction, weight, altitude and azimuth.
+  constexpr std::size_t kNodes = std::size_t(kReflectionRuleOrder) * std::size_t(kReflectionRuleOrder);
+  struct RuleNodes {
+    std::array<double, kNodes> x, y, z, weight, altitude, azimuth;
+  };
+  tbb::enumerable_thread_specific<RuleNodes> nodes_scratch;
   tbb::parallel_for(std::size_t(0), op.nodes.size(), [&](std::size_t k) {
     std::vector<double>& acc = scratch.local();
     const ReflectionNode& node = op.nodes[k];
@@ -63,19 +70,29 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
       const auto transmittance = [&](const Vec3& u) { return view.sign * (through ? (*through)(u) : 1.0); };
       row[columns.ground_at()] += view.sign * view.ground;
       if (view.above.empty()) continue;
-      // The sky: the hat functions of both grids.
-      for_each_fan_node(view.above, rule, max_angle, [&](const Vec3& u, double dsigma) {
-        const double w = dsigma * dot(node.normal, u) * transmittance(u);
-        // The direction's altitude and azimuth once, for both grids.
-        const double alt = std::asin(std::clamp(u.z, 0.0, 1.0));
-        double az = std::atan2(u.y, u.x);
-        if (az < 0) az += 2 * kPi;
-        std::size_t v[4];
-        double f[4];
-        fine.interpolation_at(alt, az, v, f);
-        for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
-        coarse.interpolation_at(alt, az, v, f);
-        for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
+      // The sky: the hat functions of both grids, a fan triangle's rule nodes at a time (their
+      // altitudes and azimuths in one vector call, once for both grids).
+      RuleNodes& nodes = nodes_scratch.local();
+      for_each_fan_triangle(view.above, max_angle, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        std::size_t count = 0;
+        for_each_triangle_node(a, b, c, rule, [&](const Vec3& u, double dsigma) {
+          nodes.x[count] = u.x;
+          nodes.y[count] = u.y;
+          nodes.z[count] = u.z;
+          nodes.weight[count] = dsigma * dot(node.normal, u) * transmittance(u);
+          ++count;
+        });
+        altitude_azimuth(nodes.x.data(), nodes.y.data(), nodes.z.data(), nodes.altitude.data(), nodes.azimuth.data(),
+                         count);
+        for (std::size_t i = 0; i < count; ++i) {
+          const double w = nodes.weight[i];
+          std::size_t v[4];
+          double f[4];
+          fine.interpolation_at(nodes.altitude[i], nodes.azimuth[i], v, f);
+          for (int m = 0; m < 4; ++m) row[v[m]] += w * f[m];
+          coarse.interpolation_at(nodes.altitude[i], nodes.azimuth[i], v, f);
+          for (int m = 0; m < 4; ++m) row[columns.coarse_at() + v[m]] += w * f[m];
+        }
       });
     }
     NodeColumns& entries = out[k];
@@ -206,10 +223,14 @@ void DirectionGrid::interpolation_at(double alt, double az, std::size_t vertex_o
   const int i = std::clamp(int(std::floor(fi)), 0, rows - 1);
   const int j = std::clamp(int(std::floor(fj)), 0, columns - 1);
   const double a = std::clamp(fi - i, 0.0, 1.0), b = std::clamp(fj - j, 0.0, 1.0);
-  vertex_out[0] = vertex(i, j);
-  vertex_out[1] = vertex(i, j + 1);
-  vertex_out[2] = vertex(i + 1, j);
-  vertex_out[3] = vertex(i + 1, j + 1);
+  // vertex(i, j) without its general modulo (two integer divisions per vertex, most of this
+  // function's time): j ∈ [0, columns − 1] here, so only j + 1 = columns wraps.
+  const std::size_t below = std::size_t(i) * std::size_t(columns), above = below + std::size_t(columns);
+  const std::size_t left = std::size_t(j), right = j + 1 == columns ? 0 : std::size_t(j + 1);
+  vertex_out[0] = below + left;
+  vertex_out[1] = below + right;
+  vertex_out[2] = above + left;
+  vertex_out[3] = above + right;
   weight_out[0] = (1 - a) * (1 - b);
   weight_out[1] = (1 - a) * b;
   weight_out[2] = a * (1 - b);
