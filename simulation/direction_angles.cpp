@@ -3,16 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#if defined(DAYLIT_LIBMVEC)
-// As in sky/circumsolar_sum.cpp: glibc declares the vector variants only under -ffast-math.
-extern "C" {
-__attribute__((simd("notinbranch"))) double asin(double) noexcept;
-__attribute__((simd("notinbranch"))) double atan2(double, double) noexcept;
-}
-#define DAYLIT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define DAYLIT_VECTOR_CLONES
-#endif
+#include "illumination/vector_math.hpp"
 
 namespace daylit {
 

@@ -2,17 +2,7 @@
 
 #include <cmath>
 
-#if defined(DAYLIT_LIBMVEC)
-// glibc declares these vector variants only under -ffast-math (bits/math-vector.h); declaring them
-// here lets the loop below use them without fast-math's licence to reorder everything else.
-extern "C" {
-__attribute__((simd("notinbranch"))) double exp(double) noexcept;
-__attribute__((simd("notinbranch"))) double acos(double) noexcept;
-}
-#define DAYLIT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define DAYLIT_VECTOR_CLONES
-#endif
+#include "illumination/vector_math.hpp"
 
 namespace daylit {
 

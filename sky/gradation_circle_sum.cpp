@@ -2,16 +2,7 @@
 
 #include <cmath>
 
-#if defined(DAYLIT_LIBMVEC)
-// As in circumsolar_sum.cpp: glibc declares the vector variants only under -ffast-math.
-extern "C" {
-__attribute__((simd("notinbranch"))) double exp(double) noexcept;
-__attribute__((simd("notinbranch"))) double cos(double) noexcept;
-}
-#define DAYLIT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define DAYLIT_VECTOR_CLONES
-#endif
+#include "illumination/vector_math.hpp"
 
 namespace daylit {
 
