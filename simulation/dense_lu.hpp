@@ -1,7 +1,7 @@
 #pragma once
 // A dense LU factorisation with partial pivoting by LAPACK's dgetrf as OpenBLAS implements it
-// (blocked, recursive panels, threaded), and solves with it (OpenBLAS's dtrsm, blocks of columns
-// in parallel). The reflected
+// (blocked, recursive panels, threaded), and solves with it (OpenBLAS's dtrsm on blocks of a fixed
+// number of columns, one thread). The reflected
 // components' operator (reflection_operator, annual runs) factorises (I − ρK)ᵀ of every live node
 // (10,308 on the office sample) and solves it for every sensor: the largest dense work of a run.
 // Eigen's PartialPivLU, used before, took 3× as long for the factorisation on 2 threads
