@@ -35,7 +35,7 @@ std::optional<int> winding_clear_of_edges(const SphericalRegion& region, const V
   const double clear = sin_rho * sin_rho * (1 + 1e-9);
   for (const DirectionLoop& loop : region.loops)
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Vec3 m = cross(loop[i], loop[(i + 1) % loop.size()]);
+      const Vec3 m = cross(loop[i], loop[i + 1 == loop.size() ? 0 : i + 1]);
       const double sm = dot(s, m);
       if (sm * sm < clear * dot(m, m)) return std::nullopt;
     }
@@ -47,7 +47,7 @@ std::optional<int> winding_clear_of_edges(const SphericalRegion& region, const V
     bool decided = true;
     for (const DirectionLoop& loop : region.loops) {
       for (std::size_t i = 0; i < loop.size() && decided; ++i) {
-        const Vec3 &a = loop[i], &b = loop[(i + 1) % loop.size()];
+        const Vec3 &a = loop[i], &b = loop[i + 1 == loop.size() ? 0 : i + 1];
         const double ka = dot(k, a) / norm(a), kb = dot(k, b) / norm(b);
         // A vertex on (or within rounding of) the plane: another plane.
         if (std::abs(ka) < 1e-9 || std::abs(kb) < 1e-9) decided = false;
