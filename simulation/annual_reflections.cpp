@@ -1,5 +1,6 @@
 #include "simulation/annual_reflections.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -182,29 +183,41 @@ std::vector<std::vector<ViewCap>> view_caps(const ReflectionOperator& op) {
   return caps;
 }
 
-// The sun's first bounce at every node in lux, per channel ([channel][node]): its disk cut exactly
-// by each view's region (cap_lambert), glass's T at the disk's centre (as direct_sun_lux).
+// The sun's first bounce in lux at nodes [first, last), per channel ([channel](node, column)), for
+// each hour of a block that has a sun: its disk cut exactly by each view's region (cap_lambert),
+// glass's T at the disk's centre (as direct_sun_lux). A node's hours are its inner loop, so that
+// its views' regions stay in cache across the block (over nodes per hour, most of this was
+// waiting on memory).
+struct SunHour {
+  Vec3 sun;
+  double direct_normal_lux = 0;
+  Eigen::Index column = 0;
+};
 void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const std::vector<std::vector<ViewCap>>& caps,
-                      const std::vector<int>& group_of_aperture, std::size_t groups, const Vec3& sun, double e_dn,
-                      std::vector<Eigen::MatrixXd>& out, Eigen::Index column) {
+                      const std::vector<int>& group_of_aperture, std::size_t groups, const std::vector<SunHour>& hours,
+                      std::size_t first, std::size_t last, std::vector<Eigen::MatrixXd>& out) {
   const double rho = kSunHalfAngleDeg * kPi / 180;
-  const double radiance = e_dn / (kPi * std::sin(rho) * std::sin(rho));
-  for (std::size_t k = 0; k < op.nodes.size(); ++k) {
+  const double disk = kPi * std::sin(rho) * std::sin(rho);
+  for (std::size_t k = first; k < last; ++k) {
     const ReflectionNode& node = op.nodes[k];
-    if (dot(node.normal, sun) < -std::sin(rho)) continue;
-    for (std::size_t v = 0; v < node.views.size(); ++v) {
-      const LightView& view = node.views[v];
-      if (view.above.empty()) continue;
-      const ViewCap& cap = caps[k][v];
-      if (dot(cap.centre, sun) < cap.cos_reach) continue;
-      const double visible = cap_lambert(view.above, sun, rho, node.normal);
-      if (visible == 0) continue;
-      const Aperture* a = view.transmitting(scene);
-      const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
-      const double t = a == nullptr         ? 1.0
-                       : view.panes.empty() ? ApertureTransmittance(*a)(sun)
-                                            : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
-      out[channel](Eigen::Index(k), column) += view.sign * radiance * visible * t;
+    for (const SunHour& hour : hours) {
+      const Vec3& sun = hour.sun;
+      if (dot(node.normal, sun) < -std::sin(rho)) continue;
+      const double radiance = hour.direct_normal_lux / disk;
+      for (std::size_t v = 0; v < node.views.size(); ++v) {
+        const LightView& view = node.views[v];
+        if (view.above.empty()) continue;
+        const ViewCap& cap = caps[k][v];
+        if (dot(cap.centre, sun) < cap.cos_reach) continue;
+        const double visible = cap_lambert(view.above, sun, rho, node.normal);
+        if (visible == 0) continue;
+        const Aperture* a = view.transmitting(scene);
+        const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
+        const double t = a == nullptr         ? 1.0
+                         : view.panes.empty() ? ApertureTransmittance(*a)(sun)
+                                              : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
+        out[channel](Eigen::Index(k), hour.column) += view.sign * radiance * visible * t;
+      }
     }
   }
 }
@@ -328,12 +341,15 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
       const bool both_grids = mi == 0;
       const std::size_t n = m.op->nodes.size();
       std::vector<Eigen::MatrixXd> sun(groups + 1, Eigen::MatrixXd::Zero(Eigen::Index(n), hours));
-      tbb::parallel_for(std::size_t(0), count, [&](std::size_t b) {
+      std::vector<SunHour> suns;
+      for (std::size_t b = 0; b < count; ++b) {
         const HourLight& hour = sky_hours[lit[start + b]];
-        if (hour.direct_normal_lux > 0)
-          sun_first_bounce(scene, *m.op, m.caps, group_of_aperture, groups, hour.sun, hour.direct_normal_lux, sun,
-                           Eigen::Index(b));
-      });
+        if (hour.direct_normal_lux > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
+      }
+      if (!suns.empty())
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+          sun_first_bounce(scene, *m.op, m.caps, group_of_aperture, groups, suns, r.begin(), r.end(), sun);
+        });
       Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
       if (both_grids) total_coarse = total_fine;
       for (std::size_t g = 0; g <= groups; ++g) {
