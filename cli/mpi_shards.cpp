@@ -21,6 +21,7 @@ SensorGrid sub_grid(const SensorGrid& grid, SensorBlock b) {
   SensorGrid part;
   part.name = grid.name;
   part.path = grid.path;
+  part.first = grid.first + b.begin;
   part.sensors.assign(grid.sensors.begin() + std::ptrdiff_t(b.begin), grid.sensors.begin() + std::ptrdiff_t(b.end));
   return part;
 }

@@ -197,12 +197,13 @@ void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const st
                       const std::vector<int>& group_of_aperture, std::size_t groups, const std::vector<SunHour>& hours,
                       std::size_t first, std::size_t last, std::vector<Eigen::MatrixXd>& out) {
   const double rho = kSunHalfAngleDeg * kPi / 180;
-  const double disk = kPi * std::sin(rho) * std::sin(rho);
+  const double sin_rho = std::sin(rho);
+  const double disk = kPi * sin_rho * sin_rho;
   for (std::size_t k = first; k < last; ++k) {
     const ReflectionNode& node = op.nodes[k];
     for (const SunHour& hour : hours) {
       const Vec3& sun = hour.sun;
-      if (dot(node.normal, sun) < -std::sin(rho)) continue;
+      if (dot(node.normal, sun) < -sin_rho) continue;
       const double radiance = hour.direct_normal_lux / disk;
       for (std::size_t v = 0; v < node.views.size(); ++v) {
         const LightView& view = node.views[v];

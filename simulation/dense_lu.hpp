@@ -25,15 +25,15 @@ class DenseLU {
   // Factorises `a` (square) in place with `threads` threads; throws daylit::Error where a pivot
   // is exactly 0 (a singular matrix) or LAPACK reports an argument error.
   DenseLU(Eigen::MatrixXd a, int threads);
-  // X = A⁻¹ B, columns independent of each other: a column's digits do not depend on which
-  // other columns are solved with it (how the sensors' ranks of an MPI run stay bit-identical).
-  Eigen::MatrixXd solve(Eigen::MatrixXd b) const;
-  Eigen::Index size() const noexcept { return lu_.rows(); }
+  // X = A⁻¹ B, where B's columns are columns first_column, first_column + 1, … of a larger
+  // system (a grid's sensors, of which an MPI rank solves a block): a column's digits depend on
+  // its index in that system only, not on which other columns are solved with it (how the
+  // sensors' ranks of an MPI run stay bit-identical to one process).
+  Eigen::MatrixXd solve(Eigen::MatrixXd b, std::size_t first_column = 0) const;
 
  private:
   Eigen::MatrixXd lu_;
   std::vector<int> pivots_;
-  int threads_;
 };
 
 }  // namespace daylit

@@ -1354,7 +1354,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     sensor_time += lap(clock);
     std::vector<double> w(m * n, 0.0);
     if (n > 0) {
-      const Eigen::MatrixXd z = lu.solve(std::move(st));
+      const Eigen::MatrixXd z = lu.solve(std::move(st), grid->first);
       for (std::size_t s = 0; s < m; ++s)
         for (std::size_t k = 0; k < n; ++k) w[s * n + k] = rho[k] * z(Eigen::Index(k), Eigen::Index(s));
     }
