@@ -81,9 +81,9 @@ CosineMoments cosine_moments(const SphericalRegion& region, const Vec3& n, const
 // of incidence a·u (a unit). The orders come from eq. 11 (τ^k about a), eq. 14 (∫ (a·u)^k (n·u)
 // and ∫ (a·u)^k (z·u)) and Chen and Arvo's eq. 29 taken about n:
 //     (k + 3) ∫ (a·u)^k (z·u)(n·u) = k (a·n) ∫ (a·u)^{k−1} (z·u) + (n·z) τ^k + Σ_edges (n·m) ∫_arc (a·u)^k (z·u) ds.
-// Meant for K ≲ 20 (it uses the upward recurrence, exact there). Accuracy 1e-11 relative: the
-// cancellation among the c_k (fitted coefficients reach 1e5) counts in κ and usually sends the
-// sum to long double (moments.cpp says why the target is not 1e-13).
+// Meant for K ≲ 20 (it uses the upward recurrence, exact there). Accuracy 1e-9 relative: the
+// cancellation among the c_k (fitted coefficients reach 1e5) counts in κ and sends the sum to
+// long double (moments.cpp says why the target is not 1e-13: the c_k are a fit, good to ~1e-3).
 struct PolynomialCosineMoments {
   double cosine;         // Σ c_k ∫ (a·u)^k (n·u) dσ
   double cosine_linear;  // Σ c_k ∫ (a·u)^k (z·u)(n·u) dσ

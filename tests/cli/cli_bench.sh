@@ -116,9 +116,11 @@ import json, re, sys
 written = int(re.search(r"\((\d+) polygons\)", open(sys.argv[1]).readline()).group(1))
 assert json.load(open(sys.argv[2]))["scene"]["occluders"] == written > 0
 PY
-# Front to back gives the same regions as another partition: the sums within the certified bound.
-[ "$(awk -F, 'NR > 1 && $3 == "front_to_back" && !($10 < 1e-12)' "$out/scenes_occluders_one_core.csv" | wc -l)" -eq 0 ] ||
-  fail "front to back differs from the default by 1e-12 or more"
+# Front to back gives the same regions as another partition: the sums within the kernels' bound,
+# twice the glazed moments' 1e-9 (the office's window is glass: illumination/moments.cpp; the
+# regions themselves are compared exactly in tests/geometry/test_visibility_random.cpp).
+[ "$(awk -F, 'NR > 1 && $3 == "front_to_back" && !($10 < 2e-9)' "$out/scenes_occluders_one_core.csv" | wc -l)" -eq 0 ] ||
+  fail "front to back differs from the default by 2e-9 or more"
 
 # `daylit bench stiff --quick`: one row per case, and the exact path within each case's tolerance
 # of its independent reference (float is reported, not checked: it is allowed to fail).

@@ -156,8 +156,9 @@ TEST_CASE("results do not depend on the number of threads") {
 
 TEST_CASE("glazing: Radiance's angle-dependent glass integrated as moments about the pane's normal") {
   // A 2 × 1.2 window in the wall y = 2 of clear glass (transmissivity 0.96): the sky component
-  // through its fitted polynomial T(μ) must equal quadrature of the same polynomial to the
-  // kernels' 1e-12 (moments.hpp; 1e-11 allowed), and quadrature of Radiance's exact T(μ) to within the fit's
+  // through its fitted polynomial T(μ) must equal quadrature of the same polynomial to the glazed
+  // moments' target, 1e-9 (moments.cpp; measured 1.6e-14 to 3.6e-12 here), and quadrature of
+  // Radiance's exact T(μ) to within the fit's
   // stated maximum error times the unglazed sky component (|T_fit − T| ≤ max_error pointwise).
   const GlassOptics clear{{0.96, 0.96, 0.96}, 1.52};
   const TransmittancePolynomial fit = fit_glass_transmittance(clear);
@@ -184,7 +185,9 @@ TEST_CASE("glazing: Radiance's angle-dependent glass integrated as moments about
     const double value = sc_percent(scene, p, n);
     const long double unglazed = reference_sc(p, n, {0, 2, 1}, {2, 0, 0}, {0, 0, 1.2});
     INFO("sensor " << p.x << "," << p.y << "," << p.z);
-    CHECK(relative_error(value, reference(polynomial)) < 1e-11);
+    const double error = relative_error(value, reference(polynomial));
+    INFO("relative error against the polynomial's quadrature " << error);
+    CHECK(error < 1e-9);
     CHECK(std::abs(value - reference([&](long double mu) { return glass_transmittance(clear, double(mu)); })) <=
           fit.max_error * unglazed);
     CHECK(value < 0.8815 * unglazed);  // oblique light loses more than at normal incidence
