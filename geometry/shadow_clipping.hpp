@@ -119,6 +119,11 @@ inline bool same_line(const LineId& x, const LineId& y) {
   return true;
 }
 
+// Whether two identities are the same record (not merely the same line, as same_line asks).
+inline bool same_identity(const LineId& x, const LineId& y) {
+  return x.kind == y.kind && x.index == y.index && x.a == y.a && x.b == y.b;
+}
+
 // The input vertex two segments share, if any: distinct lines through it meet there.
 // The input vertex where two segments' lines meet, if it is an endpoint of either (a shared
 // corner, or a T-junction such as a reveal edge ending on a long ceiling edge).
@@ -144,6 +149,14 @@ struct Vertex3 {
   std::array<FT, 3> c3() const { return {c[0], c[1], c[2]}; }
 };
 
+// A sign found for the point where two lines meet, with the lines it was found for (a cut may
+// give a vertex another line: keep_side); 0: not found yet.
+struct MeetingSign {
+  LineId in, out;
+  std::int8_t sign = 0;
+  bool holds_for(const LineId& a, const LineId& b) const { return sign != 0 && same_identity(in, a) && same_identity(out, b); }
+};
+
 template <class FT>
 struct Vertex2 {
   FT u, v;                      // coordinates (x_i, x_j) in the aperture's plane, i = k+1, j = k+2
@@ -153,6 +166,10 @@ struct Vertex2 {
   // Which point this is, within one clipping: copies of one vertex (the two halves of a cut share
   // the vertices on the cut) have the same id, distinct points distinct ids (0: not named).
   std::uint32_t id = 0;
+  // ShadowClipper::line_side's exact path, for a vertex where two lines meet: the sign with which
+  // the line through p along M_in × M_out meets the aperture's plane, an exact predicate of the
+  // two lines alone, so it travels with the vertex's copies.
+  mutable MeetingSign along;
 };
 
 template <class FT>
@@ -161,7 +178,7 @@ Vertex3<FT> interpolate(const Vertex3<FT>& a, const Vertex3<FT>& b, const FT& t,
 }
 template <class FT>
 Vertex2<FT> interpolate(const Vertex2<FT>& a, const Vertex2<FT>& b, const FT& t, const LineId& cut) {
-  return {a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t, shared_endpoint(a.out, cut), false, {}};
+  return {a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t, shared_endpoint(a.out, cut), false, {}, 0, {}};
 }
 
 template <class FT>
@@ -312,7 +329,7 @@ class ShadowClipper {
     blockers_ = &blockers;
     std::vector<std::vector<Vertex2<FT>>> pieces(1);
     std::vector<std::uint64_t> tag(1, 0);
-    for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out, ++next_id_});
+    for (const auto& x : w) pieces[0].push_back({x[i_], x[j_], x.input, x.input != nullptr, x.out, ++next_id_, {}});
     // Front to back, the pieces are merged whenever they have doubled since the last merge, and
     // once at the end: each merge costs a pass over every edge, so it is amortised over as many
     // pieces as it found (a 361-gon's shadow leaves about as many pieces as it has vertices,
@@ -676,16 +693,16 @@ class ShadowClipper {
       const V3& x = o[q];
       // An input vertex in the aperture's plane is its own projection.
       if (x.input && Signs::orient3(wv[0], wv[piece_.base_b], wv[piece_.base_c], *x.input) == 0) {
-        shadow.push_back({x[i_], x[j_], x.input, true, x.out});
+        shadow.push_back({x[i_], x[j_], x.input, true, x.out, 0, {}});
         continue;
       }
       // So is a vertex of the cut along it (t = 1 exactly, and no wider interval for dividing by it).
       if (x.out.kind == LineId::Kind::aperture_plane || o[(q + o.size() - 1) % o.size()].out.kind == LineId::Kind::aperture_plane) {
-        shadow.push_back({x[i_], x[j_], nullptr, false, x.out});
+        shadow.push_back({x[i_], x[j_], nullptr, false, x.out, 0, {}});
         continue;
       }
       const FT t = minus_h / dot(N_, x.c3());
-      shadow.push_back({x[i_] * t, x[j_] * t, x.input, false, x.out});
+      shadow.push_back({x[i_] * t, x[j_] * t, x.input, false, x.out, 0, {}});
     }
     // Orientation of the shadow, from an exact predicate rather than its area: with A', B', C' the
     // projections of A, B, C, det[A'−p, B'−p, C'−p] = t_A t_B t_C det[A−p, B−p, C−p], t > 0 in the
@@ -733,15 +750,23 @@ class ShadowClipper {
       }
       if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
         return std::nullopt;
-      const auto& wv = piece_.vertices;
-      const int along = predicates::filtered_sign([&](auto zero) {
-        using T = decltype(zero);
-        const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
-        const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
-        const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
-        const T nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
-        return nx * (m1[1] * m2[2] - m1[2] * m2[1]) + ny * (m1[2] * m2[0] - m1[0] * m2[2]) + nz * (m1[0] * m2[1] - m1[1] * m2[0]);
-      });
+      // The same vertex meets every edge of a shadow and of the shadows after it: its sign is
+      // found once (on a nearly planar 361-gon's triangles it was half of this routine's time).
+      if (!x.along.holds_for(x_in, x.out)) {
+        const auto& wv = piece_.vertices;
+        x.along.sign = std::int8_t(predicates::filtered_sign([&](auto zero) {
+          using T = decltype(zero);
+          const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
+          const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
+          const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
+          const T nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+          return nx * (m1[1] * m2[2] - m1[2] * m2[1]) + ny * (m1[2] * m2[0] - m1[0] * m2[2]) + nz * (m1[0] * m2[1] - m1[1] * m2[0]);
+        }));
+        // 0 (the line misses the plane) is not kept: it is rare, and leaves the vertex undecided.
+        x.along.in = x_in;
+        x.along.out = x.out;
+      }
+      const int along = x.along.sign;
       if (along == 0) return std::nullopt;
       const int det = predicates::filtered_sign([&](auto zero) {
         using T = decltype(zero);
