@@ -154,6 +154,8 @@ struct Vertex3 {
 struct MeetingSign {
   LineId in, out;
   std::int8_t sign = 0;
+  // M_in × M_out in intervals (under upward rounding, as predicates::filtered_sign computes it).
+  std::array<Interval, 3> direction{};
   bool holds_for(const LineId& a, const LineId& b) const { return sign != 0 && same_identity(in, a) && same_identity(out, b); }
 };
 
@@ -753,6 +755,11 @@ class ShadowClipper {
       // The same vertex meets every edge of a shadow and of the shadows after it: its sign is
       // found once (on a nearly planar 361-gon's triangles it was half of this routine's time).
       if (!x.along.holds_for(x_in, x.out)) {
+        {
+          CGAL::Protect_FPU_rounding<true> guard;
+          const auto m1 = plane_normal<Interval>(x_in), m2 = plane_normal<Interval>(x.out);
+          x.along.direction = {m1[1] * m2[2] - m1[2] * m2[1], m1[2] * m2[0] - m1[0] * m2[2], m1[0] * m2[1] - m1[1] * m2[0]};
+        }
         const auto& wv = piece_.vertices;
         x.along.sign = std::int8_t(predicates::filtered_sign([&](auto zero) {
           using T = decltype(zero);
@@ -768,11 +775,24 @@ class ShadowClipper {
       }
       const int along = x.along.sign;
       if (along == 0) return std::nullopt;
-      const int det = predicates::filtered_sign([&](auto zero) {
+      const auto det_of = [&](auto zero) {
         using T = decltype(zero);
         const auto l = plane_normal<T>(L), m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
         return l[0] * (m1[1] * m2[2] - m1[2] * m2[1]) + l[1] * (m1[2] * m2[0] - m1[0] * m2[2]) + l[2] * (m1[0] * m2[1] - m1[1] * m2[0]);
-      });
+      };
+      // predicates::filtered_sign(det_of), its interval stage from the vertex's kept M_in × M_out:
+      // the same operations in the same order, so the same interval and the same decision.
+      int det = 2;
+      {
+        CGAL::Protect_FPU_rounding<true> guard;
+        const auto l = plane_normal<Interval>(L);
+        const auto& d = x.along.direction;
+        const Interval r = l[0] * d[0] + l[1] * d[1] + l[2] * d[2];
+        if (r.inf() > 0) det = 1;
+        else if (r.sup() < 0) det = -1;
+        else if (r.inf() == 0 && r.sup() == 0) det = 0;
+      }
+      if (det == 2) det = int(CGAL::sign(det_of(CGAL::Mpzf(0))));
       return mu * along * det;
     });
   }
