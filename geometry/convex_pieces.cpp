@@ -38,19 +38,50 @@ int dominant_axis(const Vec3& n) {
 Point2 drop(const Vec3& v, int k) { return {v[(k + 1) % 3], v[(k + 2) % 3]}; }
 Point3 point3(const Vec3& v) { return {v.x, v.y, v.z}; }
 
-// Base triple (0, b, c) of largest area, so that the plane it spans is well conditioned.
+// Base triple (0, b, c) of largest area, so that the plane it spans is well conditioned: of the
+// pairs b < c with the largest |(v_b − v_0) × (v_c − v_0)| as computed, the first in (b, c) order.
+// The pairs are visited farthest first, and a pair whose |v_b − v_0| |v_c − v_0| (its bound, with
+// 1e-12 for the rounding of both sides) is below the best area found cannot be the answer, nor
+// can any pair after it: a 361-gon's halves cut at other panes' planes (cut_crossing_panes) took
+// O(n²) pairs each, 20 % of a run of Honeybee's tree-crown sample. Same answer as the search of
+// all pairs (tests/geometry/test_visibility.cpp).
 std::pair<int, int> base_triple(const std::vector<Vec3>& v) {
+  const std::size_t m = v.size();
+  std::vector<std::size_t> order(m - 1);
+  std::vector<double> reach(m, 0.0);
+  for (std::size_t i = 1; i < m; ++i) order[i - 1] = i, reach[i] = norm(v[i] - v[0]);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return reach[x] > reach[y]; });
   double best = -1;
-  std::pair<int, int> bc{1, 2};
-  for (std::size_t b = 1; b + 1 < v.size(); ++b)
-    for (std::size_t c = b + 1; c < v.size(); ++c) {
+  std::pair<std::size_t, std::size_t> bc{1, 2};
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (reach[order[i]] * reach[order[i]] * (1 + 1e-12) < best) break;
+    for (std::size_t j = i + 1; j < order.size(); ++j) {
+      if (reach[order[i]] * reach[order[j]] * (1 + 1e-12) < best) break;
+      const std::size_t b = std::min(order[i], order[j]), c = std::max(order[i], order[j]);
       const double a = norm(cross(v[b] - v[0], v[c] - v[0]));
-      if (a > best) best = a, bc = {int(b), int(c)};
+      if (a > best || (a == best && std::make_pair(b, c) < bc)) best = a, bc = {b, c};
     }
-  return bc;
+  }
+  return {int(bc.first), int(bc.second)};
 }
 
-bool exactly_planar(const std::vector<Vec3>& v, int b, int c) {
+// Whether every vertex lies in one plane, exactly. Any triple of vertices not on one line spans
+// that plane if there is one, so this takes one found in O(n) (the vertex farthest from v[0], then
+// the one farthest from their line) rather than base_triple's O(n²) search, which the pieces
+// keep for their own planes (make_piece): the halves of a 361-gon cut at every other pane's plane
+// (cut_crossing_panes in visibility.cpp) took 42 % of a run of Honeybee's tree-crown sample in
+// base_triple, most of it here, for halves that are planar only within rounding.
+bool exactly_planar(const std::vector<Vec3>& v) {
+  std::size_t b = 1, c = 2;
+  double far = -1, wide = -1;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double d = dot(v[i] - v[0], v[i] - v[0]); d > far) far = d, b = i;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double a = norm(cross(v[b] - v[0], v[i] - v[0])); a > wide) wide = a, c = i;
+  if (CGAL::collinear(point3(v[0]), point3(v[b]), point3(v[c]))) {
+    const auto [bb, cc] = base_triple(v);  // the exhaustive search, where rounding misled the first
+    b = std::size_t(bb), c = std::size_t(cc);
+  }
   for (std::size_t i = 1; i < v.size(); ++i)
     if (CGAL::orientation(point3(v[0]), point3(v[b]), point3(v[c]), point3(v[i])) != CGAL::COPLANAR) return false;
   return true;
@@ -198,9 +229,8 @@ std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t sourc
   const Vec3 normal = newell_normal(v);
   if (!(norm(normal) > 0)) throw input_error(polygon.where, "polygon '" + polygon.name + "' has zero area");
   const int k = dominant_axis(normal);
-  const auto [b, c] = base_triple(v);
   if (convex_in_projection(v, k)) {
-    if (exactly_planar(v, b, c)) return {make_piece(v, k, source)};
+    if (exactly_planar(v)) return {make_piece(v, k, source)};
     std::vector<ConvexPiece> pieces;
     split_convex(v, 0, v.size() - 1, k, source, pieces);
     return pieces;

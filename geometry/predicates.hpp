@@ -27,14 +27,26 @@ inline int sign_of(double x) { return (x > 0) - (x < 0); }
 // them exactly, without the gcds that rationals spend their time in. The fallback is taken for
 // exact zeros, the degeneracies buildings are made of.
 template <class Expr>
+int filtered_sign_given(const CGAL::Interval_nt<false>& r, const Expr& expr);
+
+template <class Expr>
 int filtered_sign(const Expr& expr) {
+  CGAL::Interval_nt<false> r;
   {
     CGAL::Protect_FPU_rounding<true> guard;
-    const CGAL::Interval_nt<false> r = expr(CGAL::Interval_nt<false>(0));
-    if (r.inf() > 0) return 1;
-    if (r.sup() < 0) return -1;
-    if (r.inf() == 0 && r.sup() == 0) return 0;
+    r = expr(CGAL::Interval_nt<false>(0));
   }
+  return filtered_sign_given(r, expr);
+}
+
+// filtered_sign(expr) where the caller has already evaluated expr in intervals, r, by the same
+// operations under Protect_FPU_rounding<true> (from parts it keeps: shadow_clipping.hpp's
+// vertices), and called this after that guard's scope: the same decision filtered_sign makes.
+template <class Expr>
+int filtered_sign_given(const CGAL::Interval_nt<false>& r, const Expr& expr) {
+  if (r.inf() > 0) return 1;
+  if (r.sup() < 0) return -1;
+  if (r.inf() == 0 && r.sup() == 0) return 0;
   return int(CGAL::sign(expr(CGAL::Mpzf(0))));
 }
 

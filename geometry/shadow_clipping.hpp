@@ -782,18 +782,14 @@ class ShadowClipper {
       };
       // predicates::filtered_sign(det_of), its interval stage from the vertex's kept M_in × M_out:
       // the same operations in the same order, so the same interval and the same decision.
-      int det = 2;
+      Interval r;
       {
         CGAL::Protect_FPU_rounding<true> guard;
         const auto l = plane_normal<Interval>(L);
         const auto& d = x.along.direction;
-        const Interval r = l[0] * d[0] + l[1] * d[1] + l[2] * d[2];
-        if (r.inf() > 0) det = 1;
-        else if (r.sup() < 0) det = -1;
-        else if (r.inf() == 0 && r.sup() == 0) det = 0;
+        r = l[0] * d[0] + l[1] * d[1] + l[2] * d[2];
       }
-      if (det == 2) det = int(CGAL::sign(det_of(CGAL::Mpzf(0))));
-      return mu * along * det;
+      return mu * along * predicates::filtered_sign_given(r, det_of);
     });
   }
 

@@ -5,7 +5,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <random>
 #include <cstdio>
 
 #include "geometry/convex_pieces.hpp"
@@ -235,6 +238,46 @@ TEST_CASE("non-convex and seamed polygons are split into convex pieces that cove
     l_area += 0.5 * norm(cross(piece.vertices[1] - piece.vertices[0], piece.vertices[2] - piece.vertices[0]));
   CHECK(l_area == Approx(3).epsilon(1e-15));
   CHECK(convex_pieces(polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}), 0).size() == 1);
+}
+
+TEST_CASE("a planar convex polygon's base triple is its largest-area one, however many vertices it has") {
+  // convex_pieces.cpp's base_triple visits the pairs farthest first and stops where no pair can
+  // beat the best area found; it must pick what the search of all pairs picks, ties (a regular
+  // polygon has many) broken the same way: the first pair (b, c) in order.
+  const auto all_pairs = [](const std::vector<Vec3>& v) {
+    double best = -1;
+    std::pair<int, int> bc{1, 2};
+    for (std::size_t b = 1; b + 1 < v.size(); ++b)
+      for (std::size_t c = b + 1; c < v.size(); ++c)
+        if (const double a = norm(cross(v[b] - v[0], v[c] - v[0])); a > best) best = a, bc = {int(b), int(c)};
+    return bc;
+  };
+  std::vector<std::vector<Vec3>> cases;
+  for (const int n : {3, 4, 5, 8, 64, 361}) {  // regular, counter-clockwise seen from +z
+    std::vector<Vec3> v;
+    for (int i = 0; i < n; ++i) v.push_back({2 + 1.5 * std::cos(2 * std::numbers::pi * i / n), -5 + 1.5 * std::sin(2 * std::numbers::pi * i / n), 2.5});
+    cases.push_back(v);
+  }
+  std::mt19937_64 rng(5);
+  for (int t = 0; t < 300; ++t) {  // on ellipses, at distinct half degrees, counter-clockwise
+    std::vector<int> steps(720);
+    for (int i = 0; i < 720; ++i) steps[std::size_t(i)] = i;
+    std::shuffle(steps.begin(), steps.end(), rng);
+    const std::size_t n = 3 + rng() % 120;
+    steps.resize(n);
+    std::sort(steps.begin(), steps.end());
+    std::uniform_real_distribution<double> u(0.01, 100);
+    const double a = u(rng), b = u(rng), x0 = u(rng) - 50, y0 = u(rng) - 50, z = u(rng);
+    std::vector<Vec3> v;
+    for (const int s : steps) v.push_back({x0 + a * std::cos(std::numbers::pi * s / 360), y0 + b * std::sin(std::numbers::pi * s / 360), z});
+    cases.push_back(v);
+  }
+  for (const auto& v : cases) {
+    const auto pieces = convex_pieces(polygon(v), 0);
+    INFO(v.size() << " vertices");
+    REQUIRE(pieces.size() == 1);
+    CHECK(std::make_pair(pieces[0].base_b, pieces[0].base_c) == all_pairs(v));
+  }
 }
 
 TEST_CASE("a polygon that crosses itself is an error naming its line") {
