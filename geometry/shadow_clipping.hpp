@@ -755,20 +755,30 @@ class ShadowClipper {
       // The same vertex meets every edge of a shadow and of the shadows after it: its sign is
       // found once (on a nearly planar 361-gon's triangles it was half of this routine's time).
       if (!x.along.holds_for(x_in, x.out)) {
-        {
-          CGAL::Protect_FPU_rounding<true> guard;
-          const auto m1 = plane_normal<Interval>(x_in), m2 = plane_normal<Interval>(x.out);
-          x.along.direction = {m1[1] * m2[2] - m1[2] * m2[1], m1[2] * m2[0] - m1[0] * m2[2], m1[0] * m2[1] - m1[1] * m2[0]};
-        }
         const auto& wv = piece_.vertices;
-        x.along.sign = std::int8_t(predicates::filtered_sign([&](auto zero) {
+        const auto along_of = [&](auto zero) {
           using T = decltype(zero);
           const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
           const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
           const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
           const T nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
           return nx * (m1[1] * m2[2] - m1[2] * m2[1]) + ny * (m1[2] * m2[0] - m1[0] * m2[2]) + nz * (m1[0] * m2[1] - m1[1] * m2[0]);
-        }));
+        };
+        // along_of's interval stage, keeping M_in × M_out for the determinants below (the same
+        // operations in the same order, so filtered_sign_given decides as filtered_sign would).
+        Interval r;
+        {
+          CGAL::Protect_FPU_rounding<true> guard;
+          const auto m1 = plane_normal<Interval>(x_in), m2 = plane_normal<Interval>(x.out);
+          auto& d = x.along.direction;
+          d = {m1[1] * m2[2] - m1[2] * m2[1], m1[2] * m2[0] - m1[0] * m2[2], m1[0] * m2[1] - m1[1] * m2[0]};
+          const Interval ax = Interval(wv[piece_.base_b].x) - Interval(wv[0].x), ay = Interval(wv[piece_.base_b].y) - Interval(wv[0].y),
+                         az = Interval(wv[piece_.base_b].z) - Interval(wv[0].z);
+          const Interval bx = Interval(wv[piece_.base_c].x) - Interval(wv[0].x), by = Interval(wv[piece_.base_c].y) - Interval(wv[0].y),
+                         bz = Interval(wv[piece_.base_c].z) - Interval(wv[0].z);
+          r = (ay * bz - az * by) * d[0] + (az * bx - ax * bz) * d[1] + (ax * by - ay * bx) * d[2];
+        }
+        x.along.sign = std::int8_t(predicates::filtered_sign_given(r, along_of));
         // 0 (the line misses the plane) is not kept: it is rare, and leaves the vertex undecided.
         x.along.in = x_in;
         x.along.out = x.out;
