@@ -6,10 +6,12 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include "geometry/error.hpp"
 #include "illumination/cosine_power_arc.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "illumination/log_cosine_arc_integral.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "illumination/precision_escalation.hpp"
 #include "illumination/rational_edge.hpp"
@@ -26,10 +28,16 @@ namespace {
 
 // −Σ_edges (w·m) [Λ(c, s1) − Λ(c, s0)] = −Σ_edges sign(w·m) [bracket(s1) − bracket(s0)]/4
 // (eqs. 28, 33, 36; lambda_bracket() in clausen.hpp). Edges in w's plane of symmetry (w·m = 0)
-// contribute nothing.
+// contribute nothing. Short arcs away from the horizon take the difference by quadrature of its
+// one-signed integrand instead (log_cosine_arc_integral.hpp), which does not cancel; __float128,
+// the ladder's last rung, keeps the brackets.
 template <class R>
 Tracked<R> base_moment_edge(const WFrameArc<R>& e) {
   if (e.wm == 0) return {};
+  if constexpr (std::is_same_v<R, double> || std::is_same_v<R, long double>) {
+    if (const auto integral = rational::log_cosine_arc_integral(e))
+      return {-e.wm * integral->value, e.kappa() * integral->magnitude};
+  }
   const Tracked<R> b1 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin1, e.cos1);
   const Tracked<R> b0 = lambda_bracket_tracked<R>(e.c, e.kappa(), e.sin0, e.cos0);
   const R sign = e.wm > 0 ? R(-0.25) : R(0.25);
