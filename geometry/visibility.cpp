@@ -162,11 +162,22 @@ struct CullPlane {
 // True if the box lies certainly on the negative side of the plane. The margin (1e-10 of the
 // magnitudes involved) exceeds the rounding of m and of the evaluation by orders of magnitude, so
 // nothing that might touch the cone is culled here; the exact predicates decide the rest.
-bool box_outside(const Box& box, const CullPlane& plane, const Vec3& p) {
-  const Vec3 c = box.center() - p, h = box.half();
-  const double reach = dot(plane.m, c) + std::abs(plane.m.x) * h.x + std::abs(plane.m.y) * h.y + std::abs(plane.m.z) * h.z;
-  const double margin = 1e-10 * plane.scale * (norm(c) + norm(h) + plane.distance);
+// The box's centre and half-size as seen from the receiver, and their lengths, are the same for
+// every plane of a cone: taken once per box, not once per plane.
+struct SeenBox {
+  Vec3 c, h;
+  double size;  // |c| + |h|
+  SeenBox(const Box& box, const Vec3& p) : c(box.center() - p), h(box.half()), size(norm(c) + norm(h)) {}
+};
+bool box_outside(const SeenBox& b, const CullPlane& plane) {
+  const double reach =
+      dot(plane.m, b.c) + std::abs(plane.m.x) * b.h.x + std::abs(plane.m.y) * b.h.y + std::abs(plane.m.z) * b.h.z;
+  const double margin = 1e-10 * plane.scale * (b.size + plane.distance);
   return reach + plane.offset < -margin;
+}
+bool box_outside_any(const Box& box, const std::vector<CullPlane>& planes, const Vec3& p) {
+  const SeenBox b(box, p);
+  return std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(b, pl); });
 }
 
 struct BvhNode {
@@ -496,7 +507,7 @@ struct VisibilityEngine::Impl {
     for (std::size_t i = 0; i < pane_pieces.size(); ++i) {
       const ConvexPiece& q = pane_pieces[i];
       if (q.source == w.source) continue;
-      if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(pane_boxes[i], pl, p); })) continue;
+      if (box_outside_any(pane_boxes[i], planes, p)) continue;
       if (!survives<Signs>(q, p, n, w, sh, options.clip_to_horizon, options.occluders_beyond)) continue;
       bool near_side = false, far_side = false;
       for (const Vec3& v : q.vertices) {
@@ -596,7 +607,7 @@ struct VisibilityEngine::Impl {
     stack[top++] = 0;
     while (top > 0) {
       const BvhNode& node = nodes[stack[--top]];
-      const bool outside = std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(node.box, pl, p); });
+      const bool outside = box_outside_any(node.box, planes, p);
       if (outside) {
         counters.occluders_box_culled += node.left < 0 ? node.count : 1;
         continue;
@@ -610,7 +621,7 @@ struct VisibilityEngine::Impl {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const ConvexPiece& o = occluders[order[i]];
         if (o.source == options.excluded_occluder || o.source == options.receiver_occluder) continue;
-        if (std::any_of(planes.begin(), planes.end(), [&](const CullPlane& pl) { return box_outside(occluder_boxes[order[i]], pl, p); })) {
+        if (box_outside_any(occluder_boxes[order[i]], planes, p)) {
           ++counters.occluders_box_culled;
           continue;
         }

@@ -4,9 +4,9 @@
 
 namespace daylit {
 
-SphericalRegion clip_to_hemisphere(const SphericalRegion& region, const Vec3& c) {
-  SphericalRegion out;
-  std::vector<double> f;
+void clip_to_hemisphere(const SphericalRegion& region, const Vec3& c, SphericalRegion& out) {
+  thread_local std::vector<double> f;
+  std::size_t used = 0;  // loops of `out` written; the others keep their storage for reuse
   for (const auto& loop : region.loops) {
     const std::size_t m = loop.size();
     f.resize(m);
@@ -17,19 +17,28 @@ SphericalRegion clip_to_hemisphere(const SphericalRegion& region, const Vec3& c)
       any_negative |= f[i] < 0;
     }
     if (!any_positive) continue;
+    if (used == out.loops.size()) out.loops.emplace_back();
+    DirectionLoop& kept = out.loops[used];
     if (!any_negative) {
-      out.loops.push_back(loop);
+      kept.assign(loop.begin(), loop.end());
+      ++used;
       continue;
     }
-    DirectionLoop kept;
+    kept.clear();
     for (std::size_t i = 0; i < m; ++i) {
       const std::size_t j = (i + 1) % m;
       if (f[i] >= 0) kept.push_back(loop[i]);
       if ((f[i] > 0 && f[j] < 0) || (f[i] < 0 && f[j] > 0))
         kept.push_back(loop[i] + (f[i] / (f[i] - f[j])) * (loop[j] - loop[i]));
     }
-    if (kept.size() >= 3) out.loops.push_back(std::move(kept));
+    if (kept.size() >= 3) ++used;
   }
+  out.loops.resize(used);
+}
+
+SphericalRegion clip_to_hemisphere(const SphericalRegion& region, const Vec3& c) {
+  SphericalRegion out;
+  clip_to_hemisphere(region, c, out);
   return out;
 }
 

@@ -12,4 +12,8 @@ namespace daylit {
 // Accuracy: the new vertices are rounded once (double).
 SphericalRegion clip_to_hemisphere(const SphericalRegion& region, const Vec3& c);
 
+// The same into `out` (which must not be `region`), reusing its storage: for callers that clip
+// many times per receiver (the radiosity's elements), where allocation was a tenth of the cost.
+void clip_to_hemisphere(const SphericalRegion& region, const Vec3& c, SphericalRegion& out);
+
 }  // namespace daylit

@@ -65,23 +65,36 @@ LambertTarget lambert_target(const RadiosityElement& element, const Vec3& x) {
 
 }  // namespace
 
-SphericalRegion element_region(const SphericalRegion& surface_region, bool unobstructed,
-                               const RadiosityElement& element, const Vec3& x, const Vec3& n) {
+void element_region(const SphericalRegion& surface_region, bool unobstructed, const RadiosityElement& element,
+                    const Vec3& x, const Vec3& n, SphericalRegion& out) {
   if (unobstructed) {
     SphericalRegion own = directions_through({element.vertices.begin(), element.vertices.end()}, x);
-    if (own.empty()) return own;
-    return crosses_plane(own, n) ? clip_to_hemisphere(own, n) : own;
+    if (!own.empty() && crosses_plane(own, n))
+      clip_to_hemisphere(own, n, out);
+    else
+      out = std::move(own);
+    return;
   }
   // The element's cone: the planes through x and its edges, oriented so that the cone is on
   // their positive side (a·(b×c) > 0 for the directions a, b, c of a positively turned triangle).
   Vec3 a = element.vertices[0] - x, b = element.vertices[1] - x, c = element.vertices[2] - x;
   const double turn = dot(a, cross(b, c));
-  if (turn == 0) return {};
+  out.loops.clear();
+  if (turn == 0) return;
   if (turn < 0) std::swap(b, c);
-  SphericalRegion r = clip_to_hemisphere(surface_region, cross(a, b));
-  if (!r.empty()) r = clip_to_hemisphere(r, cross(b, c));
-  if (!r.empty()) r = clip_to_hemisphere(r, cross(c, a));
-  return r;
+  thread_local SphericalRegion first, second;
+  clip_to_hemisphere(surface_region, cross(a, b), first);
+  if (first.empty()) return;
+  clip_to_hemisphere(first, cross(b, c), second);
+  if (second.empty()) return;
+  clip_to_hemisphere(second, cross(c, a), out);
+}
+
+SphericalRegion element_region(const SphericalRegion& surface_region, bool unobstructed,
+                               const RadiosityElement& element, const Vec3& x, const Vec3& n) {
+  SphericalRegion out;
+  element_region(surface_region, unobstructed, element, x, n, out);
+  return out;
 }
 
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& part, const RadiosityElement& element,
@@ -175,7 +188,9 @@ void unobstructed_surface_coefficients(const RadiosityMesh& mesh, std::size_t su
 
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& surface_region, bool unobstructed,
                                                       const RadiosityElement& element, const Vec3& x, const Vec3& n) {
-  return element_irradiance_coefficients(element_region(surface_region, unobstructed, element, x, n), element, x, n);
+  thread_local SphericalRegion part;
+  element_region(surface_region, unobstructed, element, x, n, part);
+  return element_irradiance_coefficients(part, element, x, n);
 }
 
 }  // namespace daylit

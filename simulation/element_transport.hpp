@@ -35,6 +35,9 @@ std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& sur
 // directions further (glazing): the clipped region itself.
 SphericalRegion element_region(const SphericalRegion& surface_region, bool unobstructed,
                                const RadiosityElement& element, const Vec3& x, const Vec3& n);
+// The same into `out` (not `surface_region`), reusing its storage.
+void element_region(const SphericalRegion& surface_region, bool unobstructed, const RadiosityElement& element,
+                    const Vec3& x, const Vec3& n, SphericalRegion& out);
 
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& element_part,
                                                       const RadiosityElement& element, const Vec3& x, const Vec3& n);

@@ -367,9 +367,11 @@ class Transport {
           unobstructed_surface_coefficients(mesh, s, x, n, inside_c);
         } else {
           inside_c.resize(elements.size());
+          thread_local SphericalRegion part;
           for (std::size_t i = 0; i < elements.size(); ++i) {
             const RadiosityElement& el = mesh.elements[elements[i]];
-            inside_c[i] = element_irradiance_coefficients(element_region(inside, false, el, x, n), el, x, n);
+            element_region(inside, false, el, x, n, part);
+            inside_c[i] = element_irradiance_coefficients(part, el, x, n);
           }
         }
         for (std::size_t i = 0; i < elements.size(); ++i) sink(m, elements[i], side, inside_c[i], false, 0.0);
@@ -397,7 +399,8 @@ class Transport {
           const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
           for (std::size_t i = 0; i < elements.size(); ++i) {
             const RadiosityElement& el = mesh.elements[elements[i]];
-            const SphericalRegion part = element_region(through, through_free, el, x, n);
+            thread_local SphericalRegion part;
+            element_region(through, through_free, el, x, n, part);
             if (part.empty()) continue;
             auto c = element_irradiance_coefficients(part, el, x, n);
             // What is seen inside, by the same function as what is seen through, so that where the
