@@ -27,16 +27,17 @@ struct Triangle {
   Vec3 a, b, c;  // not necessarily unit
 };
 
-// The rule's 16 points on the reference triangle, in barycentric coordinates, with their weights.
+// The rule's 16 points on the reference triangle, in barycentric coordinates (one array per
+// coordinate, so that the loop over the points vectorizes), with their weights.
 struct RulePoints {
-  std::array<std::array<double, 3>, 16> l;
+  std::array<double, 16> l0, l1, l2;
   std::array<double, 16> w;
 };
 RulePoints rule_points() {
   RulePoints r{};
   std::size_t k = 0;
   const auto add = [&](double l0, double l1, double l2, double w) {
-    r.l[k] = {l0, l1, l2};
+    r.l0[k] = l0, r.l1[k] = l1, r.l2[k] = l2;
     r.w[k++] = w;
   };
   for (const Orbit& o : kRule) {
@@ -58,17 +59,24 @@ const RulePoints kPoints = rule_points();
 constexpr std::size_t kMaxBatch = 4;
 void rules(const Triangle* t, std::size_t count, const DirectionBatch& g, long& evaluations, double* out) {
   std::array<double, 16 * kMaxBatch> x, y, z, inv_r3, values;
-  for (std::size_t i = 0; i < count; ++i)
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 &a = t[i].a, &b = t[i].b, &c = t[i].c;
+    double* xi = x.data() + 16 * i;
+    double* yi = y.data() + 16 * i;
+    double* zi = z.data() + 16 * i;
+    double* ri = inv_r3.data() + 16 * i;
     for (std::size_t k = 0; k < 16; ++k) {
-      const auto& l = kPoints.l[k];
-      const Vec3 p = l[0] * t[i].a + l[1] * t[i].b + l[2] * t[i].c;
+      const double l0 = kPoints.l0[k], l1 = kPoints.l1[k], l2 = kPoints.l2[k];
+      // The same sums as l0·a + l1·b + l2·c per coordinate.
+      const double px = l0 * a.x + l1 * b.x + l2 * c.x, py = l0 * a.y + l1 * b.y + l2 * c.y,
+                   pz = l0 * a.z + l1 * b.z + l2 * c.z;
       // √(p·p), not norm()'s hypot: p is a combination of the region's directions, far from
       // overflow, and hypot's care was a tenth of an annual run's time.
-      const double inv = 1 / std::sqrt(dot(p, p));
-      const std::size_t j = 16 * i + k;
-      x[j] = p.x * inv, y[j] = p.y * inv, z[j] = p.z * inv;
-      inv_r3[j] = inv * inv * inv;
+      const double inv = 1 / std::sqrt(px * px + py * py + pz * pz);
+      xi[k] = px * inv, yi[k] = py * inv, zi[k] = pz * inv;
+      ri[k] = inv * inv * inv;
     }
+  }
   g(x.data(), y.data(), z.data(), 16 * count, values.data());
   evaluations += long(16 * count);
   for (std::size_t i = 0; i < count; ++i) {

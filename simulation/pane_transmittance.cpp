@@ -13,26 +13,37 @@ namespace {
 
 Vec3 pane_axis(const Aperture& a) { return normalized(newell_normal(a.polygon.vertices)); }
 
-// The refit of constant × Π T_a(μ) (materials' fit_transmittance), the same for every region
-// seen through the same panes: kept, so that a sensor's every view does not repeat the least
-// squares (a pure function of the polynomials; the cache is shared by the threads).
+// The refit of Π T_a(μ) over the panes parallel to one another (materials' fit_transmittance),
+// the same for every region seen through the same panes: kept, so that a sensor's every view does
+// not repeat the least squares (a pure function of the polynomials; the cache is shared by the
+// threads). The constant factor (open apertures' τ and the means of panes at other angles, which
+// depend on the region) scales the fit and its error afterwards: were it part of the key, as it
+// was until 2026-12-06, every view behind a pane at another angle would refit (on Honeybee's
+// tree-crown sample a third of the run). A constant ≤ 1 leaves the scaled error within the
+// tolerance the fit met.
 TransmittancePolynomial product_fit(double constant, const std::vector<const Aperture*>& parallel) {
-  std::vector<std::vector<double>> key{{constant}};
+  std::vector<std::vector<double>> key;
   for (const Aperture* a : parallel) key.push_back(a->angular_transmittance);
-  std::sort(key.begin() + 1, key.end());
+  std::sort(key.begin(), key.end());
   static std::mutex mutex;
   static std::map<std::vector<std::vector<double>>, TransmittancePolynomial> cache;
+  TransmittancePolynomial fit;
+  bool found = false;
   {
     const std::lock_guard<std::mutex> lock(mutex);
-    if (const auto it = cache.find(key); it != cache.end()) return it->second;
+    if (const auto it = cache.find(key); it != cache.end()) fit = it->second, found = true;
   }
-  const TransmittancePolynomial fit = fit_transmittance([&](double mu) {
-    double t = constant;
-    for (const Aperture* a : parallel) t *= evaluate_polynomial(a->angular_transmittance, mu);
-    return t;
-  });
-  const std::lock_guard<std::mutex> lock(mutex);
-  cache.emplace(std::move(key), fit);
+  if (!found) {
+    fit = fit_transmittance([&](double mu) {
+      double t = 1;
+      for (const Aperture* a : parallel) t *= evaluate_polynomial(a->angular_transmittance, mu);
+      return t;
+    });
+    const std::lock_guard<std::mutex> lock(mutex);
+    cache.emplace(std::move(key), fit);
+  }
+  for (double& c : fit.coefficients) c *= constant;
+  fit.max_error *= std::abs(constant);
   return fit;
 }
 

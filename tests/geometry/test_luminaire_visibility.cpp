@@ -370,7 +370,7 @@ TEST_CASE("on seeded random scenes the luminaire's region is the default one whe
         // Directions certified to 2^-45 of their length: a few 1e-14 of the luminaire's solid
         // angle, which bounds every region here.
         VisibilityCounters unobstructed;
-        const double luminaire = omega(VisibilityEngine(Scene{{}, {{w, 1.0}}, {}, {}}, GeometryMode::exact), true, unobstructed);
+        const double luminaire = omega(VisibilityEngine(Scene{{}, {{w, 1.0}}, {}, {}, {}}, GeometryMode::exact), true, unobstructed);
         const double bound = 4e-14 * std::max(luminaire, 1e-3);
         // Nothing beyond: both options give the same region.
         const double front_new = omega(exact_front, false, counters), front_old = omega(exact_front, true, counters);
