@@ -6,7 +6,8 @@ namespace daylit {
 
 void clip_to_hemisphere(const SphericalRegion& region, const Vec3& c, SphericalRegion& out) {
   thread_local std::vector<double> f;
-  std::size_t used = 0;  // loops of `out` written; the others keep their storage for reuse
+  out.edge_sources.clear();  // new loops: no sources (spherical_region.hpp), as a fresh region
+  std::size_t used = 0;      // loops of `out` written; the others keep their storage for reuse
   for (const auto& loop : region.loops) {
     const std::size_t m = loop.size();
     f.resize(m);

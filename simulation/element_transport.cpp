@@ -80,6 +80,7 @@ void element_region(const SphericalRegion& surface_region, bool unobstructed, co
   Vec3 a = element.vertices[0] - x, b = element.vertices[1] - x, c = element.vertices[2] - x;
   const double turn = dot(a, cross(b, c));
   out.loops.clear();
+  out.edge_sources.clear();
   if (turn == 0) return;
   if (turn < 0) std::swap(b, c);
   thread_local SphericalRegion first, second;

@@ -1073,12 +1073,13 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
   return out;
 }
 
-// The next local refinement (DESIGN.md §4): every sensor whose estimate exceeds `tolerance` flags
-// its terms, largest expected reduction first, until its estimate less the reductions of the
-// flagged ones (its own and those flagged before it) meets the tolerance: a split leaves a quarter of an element's difference (second
-// order; measured, the split elements' children's terms summed over all sensors against the
-// split terms: 0.26 and 0.27 on the room sample's second and third rounds, 0.18 on the office's
-// second) and half of its glass spread (first order in the element's angle). Counting the spread
+// The next local refinement (DESIGN.md §4): every sensor whose estimate exceeds `tolerance`, worst
+// first, flags its terms, largest expected reduction first, until its estimate less the
+// reductions of the flagged ones (its own and those flagged before it) meets the tolerance: a
+// split leaves a quarter of an element's difference (second order; measured, the split elements'
+// children's terms summed over all sensors against the split terms: 0.26 and 0.27 on the room
+// sample's second and third rounds, 0.18 on the office's second) and half of its glass spread
+// (first order in the element's angle). Counting the spread
 // as irreducible instead made the sensors near the office's window, where the spread is most of
 // the estimate, flag nearly all their candidates (616 elements split against 164 once the pane
 // reflected and the spread grew 8 %). The flags of all sensors together are split. Each sensor then
