@@ -752,54 +752,50 @@ class ShadowClipper {
       }
       if (x_in.kind == LineId::Kind::unknown || x.out.kind == LineId::Kind::unknown || same_line(x_in, x.out))
         return std::nullopt;
+      // M_in × M_out, and a direction's dot products with the aperture's normal (v_b − v_0) ×
+      // (v_c − v_0) and with the line L's plane normal, in any number type: each predicate below is
+      // one of these, its interval stage taking M_in × M_out from the vertex (the same operations
+      // in the same order, so filtered_sign_given decides as filtered_sign would).
+      const auto meeting_direction = [&](auto zero) {
+        using T = decltype(zero);
+        const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
+        return std::array<T, 3>{m1[1] * m2[2] - m1[2] * m2[1], m1[2] * m2[0] - m1[0] * m2[2], m1[0] * m2[1] - m1[1] * m2[0]};
+      };
+      const auto along_aperture_normal = [&](const auto& d) {
+        using T = std::decay_t<decltype(d[0])>;
+        const auto& wv = piece_.vertices;
+        const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
+        const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
+        return (ay * bz - az * by) * d[0] + (az * bx - ax * bz) * d[1] + (ax * by - ay * bx) * d[2];
+      };
+      const auto along_line_normal = [&](const auto& d) {
+        using T = std::decay_t<decltype(d[0])>;
+        const auto l = plane_normal<T>(L);
+        return l[0] * d[0] + l[1] * d[1] + l[2] * d[2];
+      };
       // The same vertex meets every edge of a shadow and of the shadows after it: its sign is
       // found once (on a nearly planar 361-gon's triangles it was half of this routine's time).
       if (!x.along.holds_for(x_in, x.out)) {
-        const auto& wv = piece_.vertices;
-        const auto along_of = [&](auto zero) {
-          using T = decltype(zero);
-          const auto m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
-          const T ax = T(wv[piece_.base_b].x) - T(wv[0].x), ay = T(wv[piece_.base_b].y) - T(wv[0].y), az = T(wv[piece_.base_b].z) - T(wv[0].z);
-          const T bx = T(wv[piece_.base_c].x) - T(wv[0].x), by = T(wv[piece_.base_c].y) - T(wv[0].y), bz = T(wv[piece_.base_c].z) - T(wv[0].z);
-          const T nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
-          return nx * (m1[1] * m2[2] - m1[2] * m2[1]) + ny * (m1[2] * m2[0] - m1[0] * m2[2]) + nz * (m1[0] * m2[1] - m1[1] * m2[0]);
-        };
-        // along_of's interval stage, keeping M_in × M_out for the determinants below (the same
-        // operations in the same order, so filtered_sign_given decides as filtered_sign would).
         Interval r;
         {
           CGAL::Protect_FPU_rounding<true> guard;
-          const auto m1 = plane_normal<Interval>(x_in), m2 = plane_normal<Interval>(x.out);
-          auto& d = x.along.direction;
-          d = {m1[1] * m2[2] - m1[2] * m2[1], m1[2] * m2[0] - m1[0] * m2[2], m1[0] * m2[1] - m1[1] * m2[0]};
-          const Interval ax = Interval(wv[piece_.base_b].x) - Interval(wv[0].x), ay = Interval(wv[piece_.base_b].y) - Interval(wv[0].y),
-                         az = Interval(wv[piece_.base_b].z) - Interval(wv[0].z);
-          const Interval bx = Interval(wv[piece_.base_c].x) - Interval(wv[0].x), by = Interval(wv[piece_.base_c].y) - Interval(wv[0].y),
-                         bz = Interval(wv[piece_.base_c].z) - Interval(wv[0].z);
-          r = (ay * bz - az * by) * d[0] + (az * bx - ax * bz) * d[1] + (ax * by - ay * bx) * d[2];
+          x.along.direction = meeting_direction(Interval(0));
+          r = along_aperture_normal(x.along.direction);
         }
-        x.along.sign = std::int8_t(predicates::filtered_sign_given(r, along_of));
+        x.along.sign = std::int8_t(predicates::filtered_sign_given(
+            r, [&](auto zero) { return along_aperture_normal(meeting_direction(zero)); }));
         // 0 (the line misses the plane) is not kept: it is rare, and leaves the vertex undecided.
         x.along.in = x_in;
         x.along.out = x.out;
       }
       const int along = x.along.sign;
       if (along == 0) return std::nullopt;
-      const auto det_of = [&](auto zero) {
-        using T = decltype(zero);
-        const auto l = plane_normal<T>(L), m1 = plane_normal<T>(x_in), m2 = plane_normal<T>(x.out);
-        return l[0] * (m1[1] * m2[2] - m1[2] * m2[1]) + l[1] * (m1[2] * m2[0] - m1[0] * m2[2]) + l[2] * (m1[0] * m2[1] - m1[1] * m2[0]);
-      };
-      // predicates::filtered_sign(det_of), its interval stage from the vertex's kept M_in × M_out:
-      // the same operations in the same order, so the same interval and the same decision.
       Interval r;
       {
         CGAL::Protect_FPU_rounding<true> guard;
-        const auto l = plane_normal<Interval>(L);
-        const auto& d = x.along.direction;
-        r = l[0] * d[0] + l[1] * d[1] + l[2] * d[2];
+        r = along_line_normal(x.along.direction);
       }
-      return mu * along * predicates::filtered_sign_given(r, det_of);
+      return mu * along * predicates::filtered_sign_given(r, [&](auto zero) { return along_line_normal(meeting_direction(zero)); });
     });
   }
 
