@@ -190,7 +190,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  conditioning_exact, conditioning_rational);
   }
   if (std::getenv("DAYLIT_FUZZ_LOOPS"))
-    for (const SphericalRegion* region : {&exact_region, &rational_region}) {
+    for (const SphericalRegion* region : {&free_region, &exact_region, &rational_region}) {
       std::fprintf(stderr, "region:\n");
       for (const auto& loop : region->loops) {
         std::fprintf(stderr, " loop %.17g:", solid_angle(SphericalRegion{{loop}}));

@@ -46,6 +46,30 @@ Vec3 rotate(const Vec3& v) {
   return rz(ry(rx(v, 0.3), -1.1), 0.7);
 }
 
+// The solid angle of a positively oriented loop by Gauss–Bonnet, 2π − Σ turning angles, in long
+// double: the turning angle at a vertex comes from the normals of its own two arcs, so no
+// diagonal enters (an independent formula from the fan's; accurate for loops of O(1) size whose
+// arcs stay well short of π).
+long double gauss_bonnet_solid_angle(const DirectionLoop& loop) {
+  const auto cross = [](const LVec3& a, const LVec3& b) {
+    return LVec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  };
+  const auto dot = [](const LVec3& a, const LVec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  const auto unit = [&](const Vec3& v) {
+    const LVec3 l{v.x, v.y, v.z};
+    const long double n = std::sqrt(dot(l, l));
+    return LVec3{l.x / n, l.y / n, l.z / n};
+  };
+  const std::size_t m = loop.size();
+  long double turning = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const LVec3 before = unit(loop[(i + m - 1) % m]), here = unit(loop[i]), after = unit(loop[(i + 1) % m]);
+    const LVec3 n_in = cross(before, here), n_out = cross(here, after);
+    turning += std::atan2(dot(cross(n_in, n_out), here), dot(n_in, n_out));
+  }
+  return 2 * std::numbers::pi_v<long double> - turning;
+}
+
 }  // namespace
 
 TEST_CASE("solid angle of an octant is pi/2 and changes sign with orientation") {
@@ -60,10 +84,16 @@ TEST_CASE("solid angle of a centred rectangle matches the closed form from near 
   for (double d : {1e-3, 0.5, 1.0, 1e3, 1e6}) {
     const double a = 2, b = 1;
     const auto region = region_of({{-a / 2, -b / 2, d}, {a / 2, -b / 2, d}, {a / 2, b / 2, d}, {-a / 2, b / 2, d}});
-    const long double ref = 4 * std::asin((long double)(a * b) / std::sqrt((long double)(a * a + 4 * d * d) * (b * b + 4 * d * d)));
+    // The sums under the root in long double: at d = 1e-3 the argument of asin is 1 − 2.5e-6,
+    // where asin amplifies its error 450-fold, and a + 4d² rounded in double had put the
+    // reference itself 2.7e-14 off.
+    const long double la = a, lb = b, ld = d;
+    const long double ref = 4 * std::asin(la * lb / std::sqrt((la * la + 4 * ld * ld) * (lb * lb + 4 * ld * ld)));
     INFO("distance " << d);
-    // Van Oosterom–Strackee with the difference form: a few ulps even at 1e6 (DESIGN.md §7).
-    CHECK(relative_error(solid_angle(region), double(ref)) < 1e-14);
+    // Van Oosterom–Strackee with the difference form: a few ulps even at 1e6 (DESIGN.md §7), and at
+    // 1e-3, where opposite corners lie 1.8e-3 from antipodal and the fan is drawn from inside
+    // (from a corner it was 1.9e-14 off).
+    CHECK(relative_error(solid_angle(region), double(ref)) < 1e-15);
   }
 }
 
@@ -171,4 +201,54 @@ TEST_CASE("solid angle: a loop with two nearly opposite vertices is not lost in 
   // Rotating the loop's start changes nothing beyond that.
   const DirectionLoop rotated = {loop[2], loop[3], loop[0], loop[1]};
   CHECK(relative_error(solid_angle(rotated), 1.230958876456394464) < 5e-9);
+}
+
+TEST_CASE("solid angle: a fan is drawn from a vertex or a direction with no nearly opposite diagonal") {
+  SECTION("Gauss-Bonnet, the reference below, gives an octant and a centred square") {
+    CHECK(relative_error(gauss_bonnet_solid_angle({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), std::numbers::pi_v<long double> / 2) < 1e-17);
+    CHECK(relative_error(gauss_bonnet_solid_angle({{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}), 2 * std::numbers::pi_v<long double> / 3) < 1e-17);
+  }
+  SECTION("a lune whose tips lie 1e-12 from opposite, the fuzz finding of CI's seed-1 run") {
+    // A receiver within 1e-12 of the plane x = y of an aperture 5.4e6 m from the origin, in the
+    // plane z = 0 of an occluder, facing up: its region is the lune between z = 0 and x = y. The
+    // fan from the first vertex had the diagonal to the third, 1e-12 from π, and gave 3.1409051 sr
+    // for the exact mode's loop and 3.1415563 for the rational mode's, whose vertices differ only
+    // in the last bit and the sign of a zero. Every arc of the loop is ≤ 154°, so Gauss–Bonnet is
+    // accurate to ~1e-18 here; the fan's two terms are held to 1e-15 (a few ulps each).
+    const DirectionLoop exact_mode = {{-1.7999980908560265, -1.7999969470063679, 4.3655713253267835e-12},
+                                      {3, 3, 2.9999980926518228},
+                                      {1.5000021453009258, 1.5000011920927248, 0},
+                                      {6.060330983768843e-13, 1.8180992951306528e-12, 0}};
+    const DirectionLoop rational_mode = {{-1.7999980908560262, -1.7999969470063677, 4.3655713253267835e-12},
+                                         {3, 3, 2.9999980926518228},
+                                         {1.5000021453009258, 1.500001192092725, -0.0},
+                                         {6.060330983768842e-13, 1.8180992951306528e-12, -0.0}};
+    for (const DirectionLoop& loop : {exact_mode, rational_mode}) {
+      const long double reference = gauss_bonnet_solid_angle(loop);
+      for (std::size_t start = 0; start < loop.size(); ++start) {
+        DirectionLoop rotated(loop.begin() + start, loop.end());
+        rotated.insert(rotated.end(), loop.begin(), loop.begin() + start);
+        CHECK(relative_error(solid_angle(rotated), reference) < 1e-15);
+      }
+    }
+  }
+  SECTION("lunes between exactly opposite tips, up to a near hemisphere, whatever their lengths") {
+    // Tips ±x, the arcs through (0, 1, 0) and (0, cos α, sin α): a lune of dihedral angle α,
+    // solid angle 2α exactly. Every fan from a tip has a diagonal exactly π long (0/0 in its
+    // triangle); near α = π the middle vertices are nearly opposite too, so no vertex will do
+    // and the fan is drawn from a direction inside (the pole of the lune, 90° from every vertex).
+    // Four terms of at most 2π each, each within a few ulps: 1e-14 relative.
+    const double lengths[4] = {2e-12, 3, 1.5, 7};
+    for (double alpha : {0.3, pi / 2, 2.5, pi - 1e-3, pi - 1e-6, pi - 1e-9}) {
+      const Vec3 corners[4] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, std::cos(alpha), std::sin(alpha)}};
+      for (std::size_t start = 0; start < 4; ++start) {
+        DirectionLoop loop, reversed;
+        for (std::size_t i = 0; i < 4; ++i) loop.push_back(lengths[i] * corners[(start + i) % 4]);
+        reversed.assign(loop.rbegin(), loop.rend());
+        INFO("alpha " << alpha << ", start " << start);
+        CHECK(relative_error(solid_angle(loop), 2 * alpha) < 1e-14);
+        CHECK(relative_error(solid_angle(reversed), -2 * alpha) < 1e-14);
+      }
+    }
+  }
 }
