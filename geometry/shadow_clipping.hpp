@@ -83,6 +83,64 @@ inline double round_to_double(const LazyExact& x, double = 0) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Planes from the input, in any number type.
+
+// The normal N of a convex piece's plane, from its base triple, and its offset h = N·(v0 − p)
+// from the receiver p: the side p lies on is −sign(h).
+template <class T>
+void piece_plane(const ConvexPiece& c, const Vec3& p, std::array<T, 3>& N, T& h) {
+  const auto& v = c.vertices;
+  const Vec3 &o = v[0], &b = v[std::size_t(c.base_b)], &d = v[std::size_t(c.base_c)];
+  const std::array<T, 3> e1{T(b.x) - T(o.x), T(b.y) - T(o.y), T(b.z) - T(o.z)};
+  const std::array<T, 3> e2{T(d.x) - T(o.x), T(d.y) - T(o.y), T(d.z) - T(o.z)};
+  N = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  h = N[0] * (T(o.x) - T(p.x)) + N[1] * (T(o.y) - T(p.y)) + N[2] * (T(o.z) - T(p.z));
+}
+
+// Normal of the plane through p that contains the segment ab: (a − p) × (b − a), equal to
+// (a − p) × (b − p) but without its cancellation when the segment is short against its distance
+// (DESIGN.md §7, edge terms): the products are |a − p|·|b − a| in size, not |a − p|·|b − p|.
+template <class T>
+std::array<T, 3> segment_plane_normal(const Vec3& a_in, const Vec3& b_in, const Vec3& p) {
+  const std::array<T, 3> a{T(a_in.x) - T(p.x), T(a_in.y) - T(p.y), T(a_in.z) - T(p.z)};
+  const std::array<T, 3> e{T(b_in.x) - T(a_in.x), T(b_in.y) - T(a_in.y), T(b_in.z) - T(a_in.z)};
+  return {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Arcs nearly π long.
+
+// Whether an arc's ends are nearly opposite (a cosine below −0.9: longer than 154°).
+inline bool nearly_opposite(const Vec3& a, const Vec3& b) {
+  const double d = dot(a, b);
+  return d < 0 && d < -0.9 * norm(a) * norm(b);
+}
+
+// A direction halfway along an arc nearly π long. Its ends are nearly opposite, so the great
+// circle through their rounded directions turns by u/δ (δ their distance from antipodal), and
+// when δ nears u not even the side of the sphere the arc takes is decided: a receiver within
+// 1e-12 of an aperture's plane, inside its outline, sees the cut along its tangent plane run
+// between nearly opposite directions, and its region came out 1.5e-3 sr short of 3.1416 in both
+// exact modes (fuzz_visibility). The arc lies on the plane through p with normal M, and every
+// direction along it meets the aperture's plane (normal N, offset h from p) ahead, h N·d > 0: it
+// is part of the half circle {M·d = 0, h N·d > 0}, whose middle is sign(h)·((M·M)N − (N·M)M),
+// and an arc longer than 154° of a half circle contains its middle. With that vertex the arc is
+// two arcs of at most 116°, each as well conditioned as any. Built in rationals from the input
+// doubles and rounded once (a rare path); nothing when p lies in the aperture's plane (h = 0: the
+// region has no area) or M ∥ N (no such arc).
+inline std::optional<Vec3> opposite_arc_midpoint(const std::array<CGAL::Gmpq, 3>& M, const std::array<CGAL::Gmpq, 3>& N,
+                                                 const CGAL::Gmpq& h) {
+  const int side = CGAL::sign(h);
+  if (side == 0) return std::nullopt;
+  const CGAL::Gmpq mm = M[0] * M[0] + M[1] * M[1] + M[2] * M[2], nm = N[0] * M[0] + N[1] * M[1] + N[2] * M[2];
+  Vec3 d;
+  double* out[3] = {&d.x, &d.y, &d.z};
+  for (int k = 0; k < 3; ++k) *out[k] = side * round_rational(mm * N[k] - nm * M[k]);
+  if (!(norm(d) > 0) || !is_finite(d)) return std::nullopt;
+  return normalized(d);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Provenance.
 
 // The line (or, in 3D, the plane through the receiver) an edge lies on. `aperture_plane` is where
@@ -266,10 +324,7 @@ class ShadowClipper {
   void run(const std::vector<const ConvexPiece*>& blockers, SphericalRegion& region, bool sources = false) {
     std::vector<Vertex3<FT>> w;
     if (!prepare(w)) return;
-    for (const auto& P : visible_pieces(blockers, w)) {
-      region.loops.push_back(directions(P));
-      if (sources) region.edge_sources.push_back(edge_sources(P));
-    }
+    for (const auto& P : visible_pieces(blockers, w)) append_piece(P, region, sources);
   }
 
   // As run, where the blockers with pane[b] ≥ 0 transmit: their shadows split the pieces instead
@@ -284,8 +339,7 @@ class ShadowClipper {
     for (std::size_t q = 0; q < pieces.size(); ++q) {
       auto it = std::find_if(regions.begin(), regions.end(), [&](const auto& r) { return r.first == tags[q]; });
       if (it == regions.end()) it = regions.insert(regions.end(), {tags[q], SphericalRegion{}});
-      it->second.loops.push_back(directions(pieces[q]));
-      if (sources) it->second.edge_sources.push_back(edge_sources(pieces[q]));
+      append_piece(pieces[q], it->second, sources);
     }
   }
 
@@ -487,20 +541,14 @@ class ShadowClipper {
     }
   }
 
-  // Normal of the plane through p that contains line L, from the input doubles in number type T:
-  // (a − p) × (b − a), equal to (a − p) × (b − p) but without its cancellation when the segment is
-  // short against its distance (DESIGN.md §7, edge terms): the products are |a − p|·|b − a| in size,
-  // not |a − p|·|b − p|. With the longer form, the meeting points of a 128-gon canopy's edges
+  // Normal of the plane through p that contains line L, from the input doubles in number type T
+  // (a segment's by segment_plane_normal). With the longer form of a segment's, the meeting points of a 128-gon canopy's edges
   // with other lines came out of intervals up to twice 2^-44 of their length and were rebuilt in
   // rationals, at 80 % of the pair's cost (exact 13 times slower than float; now 0.9).
   template <class T>
   std::array<T, 3> plane_normal(const LineId& L) const {
     switch (L.kind) {
-      case LineId::Kind::segment: {
-        const std::array<T, 3> a{T(L.a->x) - T(p_in_.x), T(L.a->y) - T(p_in_.y), T(L.a->z) - T(p_in_.z)};
-        const std::array<T, 3> e{T(L.b->x) - T(L.a->x), T(L.b->y) - T(L.a->y), T(L.b->z) - T(L.a->z)};
-        return {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
-      }
+      case LineId::Kind::segment: return segment_plane_normal<T>(*L.a, *L.b, p_in_);
       case LineId::Kind::hemisphere: return {T(n_in_.x), T(n_in_.y), T(n_in_.z)};
       case LineId::Kind::horizon: return {T(0), T(0), T(1)};
       case LineId::Kind::aperture_plane: return cut_plane_normal<T>(*(*blockers_)[std::size_t(L.index)]);
@@ -517,18 +565,10 @@ class ShadowClipper {
   // M = sh (h_o N_W − h_W N_o), of degree 5 in the input.
   template <class T>
   std::array<T, 3> cut_plane_normal(const ConvexPiece& blocker) const {
-    const auto plane = [&](const ConvexPiece& c, std::array<T, 3>& N, T& h) {
-      const auto& v = c.vertices;
-      const Vec3 &o = v[0], &b = v[c.base_b], &d = v[c.base_c];
-      const std::array<T, 3> e1{T(b.x) - T(o.x), T(b.y) - T(o.y), T(b.z) - T(o.z)};
-      const std::array<T, 3> e2{T(d.x) - T(o.x), T(d.y) - T(o.y), T(d.z) - T(o.z)};
-      N = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-      h = N[0] * (T(o.x) - T(p_in_.x)) + N[1] * (T(o.y) - T(p_in_.y)) + N[2] * (T(o.z) - T(p_in_.z));
-    };
     std::array<T, 3> No, Nw;
     T ho, hw;
-    plane(blocker, No, ho);
-    plane(piece_, Nw, hw);
+    piece_plane(blocker, p_in_, No, ho);
+    piece_plane(piece_, p_in_, Nw, hw);
     const T s{double(sh_)};
     return {s * (ho * Nw[0] - hw * No[0]), s * (ho * Nw[1] - hw * No[1]), s * (ho * Nw[2] - hw * No[2])};
   }
@@ -992,8 +1032,7 @@ class ShadowClipper {
     return d;
   }
 
-  // The 3-D line of each edge of a visible piece, in the order directions() gives its vertices:
-  // what gradients need (DESIGN.md §7). A segment is the aperture's when its endpoints are the
+  // The 3-D line of each edge of a visible piece, edge q from P[q] to P[q + 1]: what gradients need (DESIGN.md §7). A segment is the aperture's when its endpoints are the
   // piece's own vertices, else an occluder's; a cone line stands for the aperture edge it is on.
   EdgeSourceLoop edge_sources(const std::vector<V2>& P) const {
     const auto source = [&](LineId L) {
@@ -1013,10 +1052,8 @@ class ShadowClipper {
         default: return EdgeSource{};
       }
     };
-    const std::size_t m = P.size();
-    EdgeSourceLoop out(m);
-    // Reversed with the loop (sh > 0): edge i of the reversed loop is edge m − 2 − i of P.
-    for (std::size_t q = 0; q < m; ++q) out[q] = source(P[sh_ > 0 ? (2 * m - 2 - q) % m : q].out);
+    EdgeSourceLoop out(P.size());
+    for (std::size_t q = 0; q < P.size(); ++q) out[q] = source(P[q].out);
     return out;
   }
 
@@ -1052,7 +1089,7 @@ class ShadowClipper {
     return {points.at(0), points.at(1)};
   }
 
-  // Directions from p, rounded once. A counter-clockwise piece is a positive loop when h < 0.
+  // Directions from p, rounded once, in the piece's order.
   DirectionLoop directions(const std::vector<V2>& P) const {
     DirectionLoop loop;
     loop.reserve(P.size());
@@ -1074,8 +1111,55 @@ class ShadowClipper {
       }
       loop.push_back({round_to_double(d[0], scale), round_to_double(d[1], scale), round_to_double(d[2], scale)});
     }
-    if (sh_ > 0) std::reverse(loop.begin(), loop.end());
     return loop;
+  }
+
+  // A visible piece appended to `region` as a positive loop (a counter-clockwise piece is one
+  // when h < 0), with its edges' sources when asked for, and each arc nearly π long split at its
+  // middle (opposite_arc_midpoint).
+  void append_piece(const std::vector<V2>& P, SphericalRegion& region, bool sources) const {
+    DirectionLoop loop = directions(P);
+    EdgeSourceLoop edges;
+    if (sources) edges = edge_sources(P);
+    split_opposite_arcs(P, loop, sources ? &edges : nullptr);
+    const std::size_t m = loop.size();
+    if (sh_ > 0) {
+      std::reverse(loop.begin(), loop.end());
+      // Edge i of the reversed loop is edge m − 2 − i of the original.
+      if (sources) {
+        EdgeSourceLoop reversed(m);
+        for (std::size_t i = 0; i < m; ++i) reversed[i] = edges[(2 * m - 2 - i) % m];
+        edges = std::move(reversed);
+      }
+    }
+    region.loops.push_back(std::move(loop));
+    if (sources) region.edge_sources.push_back(std::move(edges));
+  }
+
+  // Inserts the middle of each arc nearly π long, its edge q's line P[q].out giving its plane;
+  // both halves keep the edge's source.
+  void split_opposite_arcs(const std::vector<V2>& P, DirectionLoop& loop, EdgeSourceLoop* sources) const {
+    const std::size_t m = loop.size();
+    bool any = false;
+    for (std::size_t q = 0; q < m && !any; ++q) any = P[q].out.kind != LineId::Kind::unknown && nearly_opposite(loop[q], loop[(q + 1) % m]);
+    if (!any) return;
+    using Q = CGAL::Gmpq;
+    std::array<Q, 3> N;
+    Q h;
+    piece_plane(piece_, p_in_, N, h);
+    DirectionLoop split;
+    EdgeSourceLoop split_sources;
+    for (std::size_t q = 0; q < m; ++q) {
+      split.push_back(loop[q]);
+      if (sources) split_sources.push_back((*sources)[q]);
+      if (P[q].out.kind == LineId::Kind::unknown || !nearly_opposite(loop[q], loop[(q + 1) % m])) continue;
+      if (const auto middle = opposite_arc_midpoint(plane_normal<Q>(P[q].out), N, h)) {
+        split.push_back(*middle);
+        if (sources) split_sources.push_back((*sources)[q]);
+      }
+    }
+    loop = std::move(split);
+    if (sources) *sources = std::move(split_sources);
   }
 
   Vec3 p_in_, n_in_;

@@ -52,9 +52,10 @@ using clipping::LazyExact;
 // of its length, as the certified path accepts its vertices; otherwise the function returns
 // false and the caller clips in the general (certified) way. Found by fuzz_visibility: a receiver
 // 1e-12 from an aperture's edge line, whose visible solid angle came out 5e-5 too small.
-// Edge sources, when asked for, follow Sutherland–Hodgman as keep_side does (shadow_clipping.hpp):
-// id[i] is the edge leaving vertex i: k ≥ 0 the piece's edge from v[k], −1 the tangent plane,
-// −2 the horizon.
+// Each edge's source follows Sutherland–Hodgman as keep_side does (shadow_clipping.hpp): id[i] is
+// the edge leaving vertex i: k ≥ 0 the piece's edge from v[k], −1 the tangent plane, −2 the
+// horizon. Its plane is what an arc nearly π long is split by; the region carries the sources
+// only when asked for.
 
 template <class Signs>
 bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& piece, int sh, const VisibilityOptions& options,
@@ -65,7 +66,6 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
   std::array<Vec3, kMax> a, b;
   std::array<double, kMax> f;
   std::array<int, kMax> s, id, next_id;
-  const bool track = options.edge_sources;  // the common case does no bookkeeping
   std::size_t m = v.size();
   for (std::size_t i = 0; i < m; ++i) {
     a[i] = v[i] - p;
@@ -89,7 +89,7 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
     for (std::size_t i = 0; i < m; ++i) {
       const std::size_t j = (i + 1) % m;
       if (s[i] >= 0) {
-        if (track) next_id[k] = s[i] == 0 && s[j] < 0 ? cut : id[i];  // on the cut, heading out: along it
+        next_id[k] = s[i] == 0 && s[j] < 0 ? cut : id[i];  // on the cut, heading out: along it
         b[k++] = a[i];
       }
       if (s[i] * s[j] < 0) {
@@ -100,14 +100,39 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
         const double length = norm(a[i]) + norm(a[j]);
         const double slide = plane == 0 ? 3 * norm(a[j] - a[i]) / std::abs(f[i] - f[j]) : 0;
         if (!(0x1p-53 * length * (4 + slide) <= 0x1p-45 * norm(x))) return false;
-        if (track) next_id[k] = s[i] > 0 ? cut : id[i];  // exit point: along the cut; entry: along the old edge
+        next_id[k] = s[i] > 0 ? cut : id[i];  // exit point: along the cut; entry: along the old edge
         b[k++] = x;
       }
     }
     a = b;
-    if (track) id = next_id;
+    id = next_id;
     m = k;
   }
+  // An arc nearly π long (the receiver almost in the piece's plane: the cut along its tangent
+  // plane; or almost on the line of one of its edges) gets a vertex at its middle, as the
+  // certified clipper's do (clipping::opposite_arc_midpoint).
+  for (std::size_t i = 0; i < m && m + 1 < kMax; ++i) {
+    const std::size_t j = (i + 1) % m;
+    if (!clipping::nearly_opposite(a[i], a[j])) continue;
+    using Q = CGAL::Gmpq;
+    std::array<Q, 3> N, M;
+    Q h;
+    clipping::piece_plane(piece, p, N, h);
+    if (id[i] >= 0) M = clipping::segment_plane_normal<Q>(v[std::size_t(id[i])], v[(std::size_t(id[i]) + 1) % v.size()], p);
+    else if (id[i] == -1) M = {Q(n.x), Q(n.y), Q(n.z)};
+    else M = {Q(0), Q(0), Q(1)};
+    const auto middle = clipping::opposite_arc_midpoint(M, N, h);
+    if (!middle) continue;
+    for (std::size_t k = m; k > i + 1; --k) {
+      a[k] = a[k - 1];
+      id[k] = id[k - 1];
+    }
+    a[i + 1] = *middle;
+    id[i + 1] = id[i];
+    ++m;
+    ++i;  // the two halves are well short of π
+  }
+  const bool track = options.edge_sources;
   DirectionLoop loop(a.begin(), a.begin() + m);
   if (sh > 0) std::reverse(loop.begin(), loop.end());
   region.loops.push_back(std::move(loop));

@@ -173,6 +173,43 @@ TEST_CASE("a sensor in the plane of the aperture sees none of it") {
   }
 }
 
+TEST_CASE("a sensor a hair off the aperture's plane, inside its outline, sees its exact half of the window") {
+  // A square window in the plane x = y (corners exactly on it, so that directions to them carry
+  // rounding), at the origin or 5.4e6 m from it, and an upward sensor ε off that plane at the
+  // height of its centre: the region is the window's upper half seen from d = ε/√2, nearly the
+  // lune between x = y and the horizon (π sr), cut along the horizon between two directions
+  // 2d/√2 from opposite. Double directions leave such an arc's great circle uncertain by u/δ
+  // and its side undecided near δ = u; it is now split at its middle, built exactly
+  // (clipping::opposite_arc_midpoint): before, the two exact modes gave 3.14107 and 3.14159 for
+  // such a region (fuzz_visibility). Reference: the rectangle [x1, x2] × [0, h] at distance d
+  // from the foot of the perpendicular, Σ atan(x h / (d √(x² + h² + d²))), in long double.
+  // Tolerance: directions certified to 2^-45 of their length move the solid angle by at most the
+  // perimeter (< 2π) times 2^-45, 6e-14 of π; 2e-13 relative.
+  constexpr long double sqrt2 = 1.41421356237309504880168872420969808L;
+  for (const double origin : {0.0, 5.4e6}) {
+    const double ulp = origin == 0 ? 0x1p-40 : 0x1p-30;  // ulp(5.4e6) = 2^-30
+    for (const double steps : {1.0, 1000.0, 1048576.0}) {
+      const double epsilon = steps * ulp, h = 1.5;
+      Scene scene;
+      scene.apertures.push_back({polygon({{origin - 1, origin - 1, -h}, {origin + 1, origin + 1, -h},
+                                          {origin + 1, origin + 1, h}, {origin - 1, origin - 1, h}}, "window"), 1.0});
+      const Vec3 p{origin + epsilon, origin, 0};
+      const long double d = epsilon / sqrt2, foot = epsilon / sqrt2;  // along (1, 1, 0)/√2
+      const auto corner = [&](long double x) {
+        return std::atan2(std::abs(x) * h, d * std::sqrt(x * x + (long double)h * h + d * d));
+      };
+      const long double reference = corner(sqrt2 - foot) + corner(-sqrt2 - foot);
+      for (const GeometryMode mode : {GeometryMode::exact, GeometryMode::rational}) {
+        const VisibilityEngine engine(scene, mode);
+        VisibilityCounters counters;
+        const double omega = solid_angle(engine.visible_region(p, {0, 0, 1}, 0, counters));
+        INFO("origin " << origin << ", epsilon " << epsilon << ", mode " << int(mode));
+        CHECK(relative_error(omega, reference) < 2e-13);
+      }
+    }
+  }
+}
+
 TEST_CASE("an occluder beyond the window and one in front of it both block") {
   // Two opaque panels, one inside (y = 1) and one outside (y = −1), each the mirror image of the
   // other's shadow: together they cover the full window height over known x ranges.
