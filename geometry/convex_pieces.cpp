@@ -187,6 +187,11 @@ std::vector<ConvexPiece> triangulate(const Polygon& polygon, int k, std::size_t 
   } catch (const Cdt::Intersection_of_constraints_exception&) {
     throw input_error(polygon.where, "polygon '" + polygon.name + "' intersects itself");
   }
+  // Every vertex on one line in the projection: a polygon of no area in exact arithmetic whose
+  // double normal, all rounding, passed the readers' zero-area test (found by fuzz_visibility: a
+  // triangle in x = −1.0000000000001137 with collinear (y, z)). The triangulation is then a
+  // segment, with no faces to walk.
+  if (cdt.dimension() < 2) throw input_error(polygon.where, "polygon '" + polygon.name + "' encloses no area");
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info().nesting_level = -1;
   std::list<Cdt::Edge> border;
   mark_domains(cdt, cdt.infinite_face(), 0, border);

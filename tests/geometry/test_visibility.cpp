@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "geometry/convex_pieces.hpp"
+#include "geometry/input_checks.hpp"
 #include "illumination/solid_angle.hpp"
 #include "reference_quadrature.hpp"
 #include "test_scenes.hpp"
@@ -275,6 +276,24 @@ TEST_CASE("non-convex and seamed polygons are split into convex pieces that cove
     l_area += 0.5 * norm(cross(piece.vertices[1] - piece.vertices[0], piece.vertices[2] - piece.vertices[0]));
   CHECK(l_area == Approx(3).epsilon(1e-15));
   CHECK(convex_pieces(polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}), 0).size() == 1);
+}
+
+TEST_CASE("a polygon of exactly zero area whose rounded normal is not zero is refused naming its line") {
+  // Found by fuzz_visibility: a triangle in the plane x = −1.0000000000001137 whose (y, z) are
+  // collinear in exact arithmetic; its double Newell normal, all rounding, passed the readers'
+  // zero-area test, the exact convexity test sent it to the triangulation, and the triangulation
+  // of its projection (a segment) had no faces to walk (a null neighbour, UBSan).
+  const double x = -1.0000000000001137;
+  const Vec3 a{x, 14.999999761580966, 15.999999523162845}, b{x, 14.999992370605014, 15.999992132187003},
+             c{x, -17.000007629394986, -16.000007390975838};
+  REQUIRE(!polygon_shape({a, b, c}).zero_area);  // the premise: rounding gives it an area
+  Polygon collinear = polygon({a, b, c}, "sliver");
+  collinear.where = {"scene.rad", 7};
+  CHECK_THROWS_WITH(convex_pieces(collinear, 0), Catch::Contains("scene.rad:7") && Catch::Contains("encloses no area"));
+  // One ulp off that line it has an area, and stays whole.
+  const auto pieces = convex_pieces(polygon({a, b, {x, c.y, std::nextafter(c.z, -100.0)}}, "sliver"), 0);
+  REQUIRE(pieces.size() == 1);
+  CHECK(pieces[0].drop_axis == 0);
 }
 
 TEST_CASE("a planar convex polygon's base triple is its largest-area one, however many vertices it has") {
