@@ -176,7 +176,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const SphericalRegion free_region = visible_region(*free_exact, p, n), exact_region = visible_region(*exact, p, n),
                         rational_region = visible_region(*rational, p, n);
   const double unoccluded = solid_angle(free_region), e = solid_angle(exact_region), r = solid_angle(rational_region);
-  const double f = solid_angle(visible_region(*floating, p, n));
+  const SphericalRegion floating_region = visible_region(*floating, p, n);
+  const double f = solid_angle(floating_region);
   const SphericalRegion front_exact_region = visible_region(*front_exact, p, n),
                         front_rational_region = visible_region(*front_rational, p, n);
   const double fe = solid_angle(front_exact_region), fr = solid_angle(front_rational_region);
@@ -190,7 +191,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  conditioning_exact, conditioning_rational);
   }
   if (std::getenv("DAYLIT_FUZZ_LOOPS"))
-    for (const SphericalRegion* region : {&free_region, &exact_region, &rational_region}) {
+    for (const SphericalRegion* region : {&free_region, &exact_region, &rational_region, &floating_region}) {
       std::fprintf(stderr, "region:\n");
       for (const auto& loop : region->loops) {
         std::fprintf(stderr, " loop %.17g:", solid_angle(SphericalRegion{{loop}}));

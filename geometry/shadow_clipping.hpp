@@ -365,6 +365,13 @@ class ShadowClipper {
     }
     w0_ = w[0];
     N_ = cross(sub(w[piece_.base_b], w0_), sub(w[piece_.base_c], w0_));
+    // The float path lifts its vertices by dividing by N_k. A sliver (a triangle of a polygon
+    // warped within tolerance, 1e-13 of area) can have that component 0 in doubles: seen edge-on
+    // in its projection, it covers nothing there, and its lifted vertices were infinite (found by
+    // fuzz_visibility: a NaN solid angle in float mode). The exact paths build their directions
+    // from the input and never divide by it.
+    if constexpr (!kSymbolic)
+      if (N_[k_] == 0) return false;
     if (!clip_to_receiver(w)) return false;
     for (const auto& x : w) cone_lines_.push_back(x.out);
     return true;
@@ -1032,8 +1039,9 @@ class ShadowClipper {
     return d;
   }
 
-  // The 3-D line of each edge of a visible piece, edge q from P[q] to P[q + 1]: what gradients need (DESIGN.md §7). A segment is the aperture's when its endpoints are the
-  // piece's own vertices, else an occluder's; a cone line stands for the aperture edge it is on.
+  // The 3-D line of each edge of a visible piece, edge q from P[q] to P[q + 1]: what gradients
+  // need (DESIGN.md §7). A segment is the aperture's when its endpoints are the piece's own
+  // vertices, else an occluder's; a cone line stands for the aperture edge it is on.
   EdgeSourceLoop edge_sources(const std::vector<V2>& P) const {
     const auto source = [&](LineId L) {
       if (L.kind == LineId::Kind::cone) L = cone_lines_[std::size_t(L.index)];

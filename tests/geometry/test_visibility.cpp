@@ -211,6 +211,29 @@ TEST_CASE("a sensor a hair off the aperture's plane, inside its outline, sees it
   }
 }
 
+TEST_CASE("float geometry stays finite on a piece whose own normal has no component along its projection") {
+  // Found by fuzz_visibility: a quad 5.4e6 m from the origin, warped within tolerance (two of its
+  // corners 1.6e-5 apart), is cut into pieces; one is a sliver of 1e-13 area whose double normal
+  // has y = 0, the axis its projection drops, and the float path's lifting divided by it: a NaN
+  // solid angle. Such a piece now covers nothing in float mode; the exact modes, which never
+  // divide by it, are unchanged, and float agrees with them to its usual rounding.
+  Scene scene;
+  scene.apertures.push_back({polygon({{5400019.0000000745, 5400007.0000000373, 19.000005804002313},
+                                      {5400015.0000076294, 5400003.0000019148, 3.0000000074505841},
+                                      {5399999, 5399999, -1.0000019073486328},
+                                      {5400019.0000095367, 5400007.0000038221, 19.000015266243285}}, "window"), 1.0});
+  const Vec3 p{5400000, 5400000, 0};
+  const auto omega = [&](GeometryMode mode) {
+    const VisibilityEngine engine(scene, mode);
+    VisibilityCounters counters;
+    return solid_angle(engine.visible_region(p, {0, 0, 1}, 0, counters));
+  };
+  const double exact = omega(GeometryMode::exact), floating = omega(GeometryMode::floating);
+  CHECK(std::isfinite(floating));
+  CHECK(relative_error(floating, exact) < 1e-12);
+  CHECK(relative_error(exact, omega(GeometryMode::rational)) < 1e-13);
+}
+
 TEST_CASE("an occluder beyond the window and one in front of it both block") {
   // Two opaque panels, one inside (y = 1) and one outside (y = −1), each the mirror image of the
   // other's shadow: together they cover the full window height over known x ranges.
