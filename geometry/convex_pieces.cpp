@@ -2,6 +2,7 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpq.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
@@ -228,6 +229,21 @@ void split_convex(const std::vector<Vec3>& v, std::size_t lo, std::size_t hi, in
 }
 
 }  // namespace
+
+bool exactly_zero_area(const std::vector<Vec3>& v) {
+  using Q = CGAL::Gmpq;
+  if (v.size() < 3) return true;
+  const Q ox(v[0].x), oy(v[0].y), oz(v[0].z);
+  Q n[3] = {0, 0, 0};
+  for (std::size_t i = 1; i + 1 < v.size(); ++i) {
+    const Q ax = Q(v[i].x) - ox, ay = Q(v[i].y) - oy, az = Q(v[i].z) - oz;
+    const Q bx = Q(v[i + 1].x) - ox, by = Q(v[i + 1].y) - oy, bz = Q(v[i + 1].z) - oz;
+    n[0] += ay * bz - az * by;
+    n[1] += az * bx - ax * bz;
+    n[2] += ax * by - ay * bx;
+  }
+  return CGAL::sign(n[0]) == CGAL::ZERO && CGAL::sign(n[1]) == CGAL::ZERO && CGAL::sign(n[2]) == CGAL::ZERO;
+}
 
 std::vector<ConvexPiece> convex_pieces(const Polygon& polygon, std::size_t source) {
   const auto& v = polygon.vertices;

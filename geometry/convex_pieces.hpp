@@ -19,6 +19,10 @@ struct ConvexPiece {
   std::size_t source = 0;      // index of the polygon it came from
 };
 
+// Whether Newell's normal of the vertices, Σ (v_i − v_0) × (v_{i+1} − v_0), is zero in exact
+// arithmetic (rationals from the input doubles): the polygon's vector area is zero.
+bool exactly_zero_area(const std::vector<Vec3>& v);
+
 // Splits `polygon` into convex pieces. A planar convex polygon stays whole; a convex polygon that
 // is planar only within tolerance is fanned into triangles; a non-convex one is triangulated by a
 // constrained Delaunay triangulation in its plane, after cancelling edges that are traversed in

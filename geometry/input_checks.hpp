@@ -1,14 +1,16 @@
 #pragma once
 // What input geometry is accepted, shared by the readers (.rad, .pts) and `daylit eval`: a bound on
 // coordinates, and shape checks on polygons (area, planarity within a tolerance, boundaries that
-// cross themselves). Plain doubles: these checks decide what input is accepted, with tolerances
-// far above rounding; the exact geometry (convex_pieces) decides everything after.
+// cross themselves). Plain doubles, with tolerances far above rounding, except where the area is
+// within the rounding of Newell's normal: that is decided exactly (exactly_zero_area); the exact
+// geometry (convex_pieces) decides everything after.
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
+#include "geometry/convex_pieces.hpp"
 #include "geometry/polygon.hpp"
 
 namespace daylit {
@@ -23,8 +25,8 @@ struct PolygonShape {
   Vec3 normal;            // Newell's normal: twice the vector area
   double extent = 0;      // largest distance of a vertex from the first one
   double deviation = 0;   // largest distance of a vertex from the mean plane (0 if the area is zero)
-  bool zero_area = true;  // |normal| ≤ 1e-24·extent²: collinear or repeated vertices, or lobes
-                          // of opposite orientation that cancel
+  bool zero_area = true;  // |normal| ≤ 1e-24·extent², or 0 exactly: collinear or repeated
+                          // vertices, or lobes of opposite orientation that cancel
 };
 
 // O(n). The mean plane passes through the centroid of the vertices with Newell's normal.
@@ -35,6 +37,16 @@ inline PolygonShape polygon_shape(const std::vector<Vec3>& v) {
   for (const Vec3& p : v) s.extent = std::max(s.extent, norm(p - v[0]));
   const double area2 = norm(s.normal);
   s.zero_area = !(area2 > 0) || area2 <= 1e-24 * s.extent * s.extent;
+  // A normal within its own rounding ((m + 8) u Σ|v_i − v_0||v_{i+1} − v_0| per component, twice
+  // that for its length) may be nothing but rounding, and is decided exactly: a triangle in
+  // x = −1.0000000000001137 with collinear (y, z) had a double normal of 1e-13 and went on to a
+  // triangulation of a segment (found by fuzz_visibility).
+  const double terms = double(v.size() + 8) * 0x1p-52;  // Σ|a||b| ≤ m·extent²: most polygons stop here
+  if (!s.zero_area && area2 <= terms * double(v.size()) * s.extent * s.extent) {
+    double size = 0;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i) size += norm(v[i] - v[0]) * norm(v[i + 1] - v[0]);
+    if (area2 <= terms * size) s.zero_area = exactly_zero_area(v);
+  }
   if (s.zero_area) return s;
   const Vec3 unit = s.normal / area2;
   Vec3 centroid;

@@ -303,18 +303,23 @@ TEST_CASE("non-convex and seamed polygons are split into convex pieces that cove
 
 TEST_CASE("a polygon of exactly zero area whose rounded normal is not zero is refused naming its line") {
   // Found by fuzz_visibility: a triangle in the plane x = −1.0000000000001137 whose (y, z) are
-  // collinear in exact arithmetic; its double Newell normal, all rounding, passed the readers'
-  // zero-area test, the exact convexity test sent it to the triangulation, and the triangulation
-  // of its projection (a segment) had no faces to walk (a null neighbour, UBSan).
+  // collinear in exact arithmetic; its double Newell normal, all rounding (1e-13), passed the
+  // readers' zero-area test, the exact convexity test sent it to the triangulation, and the
+  // triangulation of its projection (a segment) had no faces to walk (a null neighbour, UBSan).
+  // The readers' test now decides a normal within its rounding exactly; convex_pieces, which
+  // other callers reach, refuses such a polygon too.
   const double x = -1.0000000000001137;
   const Vec3 a{x, 14.999999761580966, 15.999999523162845}, b{x, 14.999992370605014, 15.999992132187003},
              c{x, -17.000007629394986, -16.000007390975838};
-  REQUIRE(!polygon_shape({a, b, c}).zero_area);  // the premise: rounding gives it an area
+  REQUIRE(norm(newell_normal({a, b, c})) > 0);  // the premise: rounding gives it an area
+  CHECK(polygon_shape({a, b, c}).zero_area);
   Polygon collinear = polygon({a, b, c}, "sliver");
   collinear.where = {"scene.rad", 7};
   CHECK_THROWS_WITH(convex_pieces(collinear, 0), Catch::Contains("scene.rad:7") && Catch::Contains("encloses no area"));
   // One ulp off that line it has an area, and stays whole.
-  const auto pieces = convex_pieces(polygon({a, b, {x, c.y, std::nextafter(c.z, -100.0)}}, "sliver"), 0);
+  const Vec3 c_off{x, c.y, std::nextafter(c.z, -100.0)};
+  CHECK(!polygon_shape({a, b, c_off}).zero_area);
+  const auto pieces = convex_pieces(polygon({a, b, c_off}, "sliver"), 0);
   REQUIRE(pieces.size() == 1);
   CHECK(pieces[0].drop_axis == 0);
 }
