@@ -117,7 +117,7 @@ class Transport {
   Transport(const Scene& scene, const std::vector<double>& reflectance, const VisibilityEngine& engine,
             const std::vector<const SensorGrid*>& grids, const ReflectionOptions& options, double coarsening,
             bool every_side)
-      : scene_(scene), reflectance_(reflectance), engine_(engine), options_(options), groups_(group_apertures(scene)),
+      : scene_(scene), engine_(engine), options_(options), groups_(group_apertures(scene)),
         coarsening_(coarsening) {
     e_out_ = options.light ? options.light_horizontal : unobstructed_horizontal_irradiance(options.sky);
     ground_luminance_ = options.ground_reflectance * e_out_ / kPi;
@@ -610,7 +610,6 @@ class Transport {
   }
 
   const Scene& scene_;
-  const std::vector<double>& reflectance_;
   const VisibilityEngine& engine_;
   ReflectionOptions options_;
   std::vector<ApertureGroup> groups_;
