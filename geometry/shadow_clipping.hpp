@@ -110,12 +110,6 @@ std::array<T, 3> segment_plane_normal(const Vec3& a_in, const Vec3& b_in, const 
 // ---------------------------------------------------------------------------------------------
 // Arcs nearly π long.
 
-// Whether an arc's ends are nearly opposite (a cosine below −0.9: longer than 154°).
-inline bool nearly_opposite(const Vec3& a, const Vec3& b) {
-  const double d = dot(a, b);
-  return d < 0 && d < -0.9 * norm(a) * norm(b);
-}
-
 // A direction halfway along an arc nearly π long. Its ends are nearly opposite, so the great
 // circle through their rounded directions turns by u/δ (δ their distance from antipodal), and
 // when δ nears u not even the side of the sphere the arc takes is decided: a receiver within
@@ -1149,7 +1143,8 @@ class ShadowClipper {
   void split_opposite_arcs(const std::vector<V2>& P, DirectionLoop& loop, EdgeSourceLoop* sources) const {
     const std::size_t m = loop.size();
     bool any = false;
-    for (std::size_t q = 0; q < m && !any; ++q) any = P[q].out.kind != LineId::Kind::unknown && nearly_opposite(loop[q], loop[(q + 1) % m]);
+    for (std::size_t q = 0; q < m && !any; ++q)
+      any = P[q].out.kind != LineId::Kind::unknown && nearly_opposite(loop[q], loop[(q + 1) % m]);
     if (!any) return;
     using Q = CGAL::Gmpq;
     std::array<Q, 3> N;

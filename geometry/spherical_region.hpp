@@ -18,6 +18,14 @@ namespace daylit {
 // (a·(b×c) > 0 for a convex loop); its signed solid angle is then positive.
 using DirectionLoop = std::vector<Vec3>;
 
+// Whether two directions are nearly opposite: a cosine below −0.9, an arc between them longer
+// than 154°. Both the clipper (an arc that long is split at its middle) and the solid angle's fan
+// (no diagonal that long) keep away from such pairs, whose great circle rounding leaves uncertain.
+inline bool nearly_opposite(const Vec3& a, const Vec3& b) {
+  const double d = dot(a, b);
+  return d < 0 && d < -0.9 * norm(a) * norm(b);
+}
+
 // Where an edge of a region comes from (DESIGN.md §7, "Gradients behind occluders"): every edge
 // lies in the plane through the receiver of a line fixed in the model. When the receiver moves,
 // the edges of an aperture or occluder line turn about that line (Arvo 1994, "The Irradiance

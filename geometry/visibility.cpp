@@ -111,13 +111,13 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
   // An arc nearly π long (the receiver almost in the piece's plane: the cut along its tangent
   // plane; or almost on the line of one of its edges) gets a vertex at its middle, as the
   // certified clipper's do (clipping::opposite_arc_midpoint).
+  using Q = CGAL::Gmpq;
+  std::optional<std::pair<std::array<Q, 3>, Q>> plane;  // the piece's N and h, built at the first such arc
   for (std::size_t i = 0; i < m && m + 1 < kMax; ++i) {
-    const std::size_t j = (i + 1) % m;
-    if (!clipping::nearly_opposite(a[i], a[j])) continue;
-    using Q = CGAL::Gmpq;
-    std::array<Q, 3> N, M;
-    Q h;
-    clipping::piece_plane(piece, p, N, h);
+    if (!nearly_opposite(a[i], a[(i + 1) % m])) continue;
+    if (!plane) clipping::piece_plane(piece, p, plane.emplace().first, plane->second);
+    const auto& [N, h] = *plane;
+    std::array<Q, 3> M;
     if (id[i] >= 0) M = clipping::segment_plane_normal<Q>(v[std::size_t(id[i])], v[(std::size_t(id[i]) + 1) % v.size()], p);
     else if (id[i] == -1) M = {Q(n.x), Q(n.y), Q(n.z)};
     else M = {Q(0), Q(0), Q(1)};

@@ -4,7 +4,7 @@ namespace daylit {
 
 namespace {
 
-// Below this cosine a diagonal is "nearly opposite" (within 26° of π).
+// Below this cosine a diagonal is nearly opposite (as nearly_opposite(), spherical_region.hpp).
 constexpr double kOppositeCosine = -0.9;
 
 // The lowest cosine between u[k] and the vertices it is not adjacent to (the fan's diagonals
@@ -20,13 +20,10 @@ double worst_diagonal_cosine(const std::vector<Vec3>& u, std::size_t k) {
 
 FanApex fan_apex(const DirectionLoop& loop) noexcept {
   const std::size_t m = loop.size();
-  // The common case first: a·b ≥ −0.9|a||b| for every diagonal from v0, the lengths taken only
-  // for obtuse diagonals (a small, distant polygon has none).
+  // The common case first: no diagonal from v0 nearly opposite it (the lengths are taken only for
+  // obtuse diagonals: a small, distant polygon has none).
   bool first_is_fine = true;
-  for (std::size_t j = 2; j + 1 < m && first_is_fine; ++j) {
-    const double d = dot(loop[0], loop[j]);
-    first_is_fine = d >= 0 || d >= kOppositeCosine * norm(loop[0]) * norm(loop[j]);
-  }
+  for (std::size_t j = 2; j + 1 < m && first_is_fine; ++j) first_is_fine = !nearly_opposite(loop[0], loop[j]);
   if (first_is_fine) return {};
   std::vector<Vec3> u(m);
   for (std::size_t i = 0; i < m; ++i) u[i] = normalized(loop[i]);
