@@ -28,6 +28,7 @@
 #include <type_traits>
 
 #include "geometry/convex_pieces.hpp"
+#include "geometry/coplanar_panes.hpp"
 #include "geometry/error.hpp"
 #include "geometry/predicates.hpp"
 #include "geometry/shadow_clipping.hpp"
@@ -263,6 +264,12 @@ struct VisibilityEngine::Impl {
     std::vector<ConvexPiece> positive, negative;
   };
   std::map<std::pair<const ConvexPiece*, std::size_t>, Halves> pane_halves;
+  // Panes in one plane that overlap (coplanar_panes.hpp): per aperture, the earlier ones whose
+  // overlap with it is theirs, and the later ones that give it theirs.
+  std::vector<std::vector<std::uint32_t>> overlaps_earlier, overlaps_later;
+  static bool among(const std::vector<std::uint32_t>& list, std::size_t a) {
+    return std::find(list.begin(), list.end(), std::uint32_t(a)) != list.end();
+  }
 
   void cut_crossing_panes() {
     for (const auto& pieces : apertures)
@@ -535,8 +542,16 @@ struct VisibilityEngine::Impl {
     for (std::size_t i = 0; i < pane_pieces.size(); ++i) {
       const ConvexPiece& q = pane_pieces[i];
       if (q.source == w.source) continue;
+      // A later pane in w's plane that overlaps it gives w the overlap, and is not in front of it.
+      if (among(overlaps_later[w.source], q.source)) continue;
       if (box_outside_any(pane_boxes[i], planes, p)) continue;
       if (!survives<Signs>(q, p, n, w, sh, options.clip_to_horizon, options.occluders_beyond)) continue;
+      // An earlier one keeps the overlap: w's view passes none of it (exact clipping, as of a
+      // wall in the aperture's plane).
+      if (among(overlaps_earlier[w.source], q.source)) {
+        blockers.push_back(&q);
+        continue;
+      }
       bool near_side = false, far_side = false;
       for (const Vec3& v : q.vertices) {
         const int side = sh * Signs::normal_dot_diff(wv[0], wv[w.base_b], wv[w.base_c], v, wv[0]);
@@ -799,6 +814,12 @@ struct VisibilityEngine::Impl {
       std::vector<std::uint32_t> through;
       for (std::size_t bit = 0; bit < front.size(); ++bit)
         if (tag >> bit & 1) through.push_back(front[bit]);
+      // A direction through two panes in one plane crosses the plane once, in their overlap: the
+      // earlier pane's alone.
+      const std::vector<std::uint32_t> crossed = through;
+      std::erase_if(through, [&](std::uint32_t t) {
+        return std::any_of(crossed.begin(), crossed.end(), [&](std::uint32_t e) { return among(overlaps_later[e], t); });
+      });
       std::sort(through.begin(), through.end());
       const std::uint32_t last = last_pane<Signs>(p, through);
       add_behind(view, std::move(through), std::move(part), last);
@@ -839,6 +860,14 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, Subtra
     impl_->aperture_pieces += impl_->apertures.back().size();
   }
   impl_->panes = apertures == AperturesAre::panes && scene.apertures.size() > 1;
+  if (impl_->panes) {
+    impl_->overlaps_earlier.resize(scene.apertures.size());
+    impl_->overlaps_later.resize(scene.apertures.size());
+    for (const auto& [earlier, later] : overlapping_coplanar_panes(impl_->apertures)) {
+      impl_->overlaps_earlier[later].push_back(std::uint32_t(earlier));
+      impl_->overlaps_later[earlier].push_back(std::uint32_t(later));
+    }
+  }
   if (impl_->panes)
     for (const auto& pieces : impl_->apertures) {
       impl_->pane_first.push_back(impl_->pane_pieces.size());

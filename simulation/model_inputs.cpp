@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/coplanar_panes.hpp"
 #include "geometry/honeybee_model.hpp"
 #include "geometry/obj_material_map.hpp"
 #include "materials/obj_materials.hpp"
@@ -117,6 +118,20 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
     in.scene.notices.push_back(first_covered + (covered > 1 ? " (and " + std::to_string(covered - 1) + " more apertures in walls alike)" : "") +
                                ": the occluder hides it from every sensor, so no sky comes through. Cut the window's "
                                "outline out of the wall (Radiance's seams), or leave the wall out there");
+  if (in.scene.apertures.size() > 1) {
+    std::vector<Polygon> panes;
+    for (const Aperture& a : in.scene.apertures) panes.push_back(a.polygon);
+    if (const auto pairs = overlapping_coplanar_polygons(panes); !pairs.empty()) {
+      const Polygon& first = panes[pairs[0].first];
+      const Polygon& second = panes[pairs[0].second];
+      in.scene.notices.push_back(
+          second.where.str() + ": pane '" + second.name + "' and pane '" + first.name + "' (" + first.where.str() +
+          ") lie in one plane and overlap" +
+          (pairs.size() > 1 ? " (and " + std::to_string(pairs.size() - 1) + " more pairs alike)" : "") +
+          ": a ray crosses both at one point, so where they overlap the light passes one pane, the first listed, "
+          "as in Radiance (whose ray meets the second at zero distance and passes it); a double-sided shade drawn twice?");
+    }
+  }
   for (const auto& grid : in.grids)
     if (faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "

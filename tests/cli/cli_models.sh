@@ -50,6 +50,21 @@ if [ $? -ne 0 ] || [ "$(cut -d, -f10 closed.csv | sed 1d | sort -u)" != 0 ] ||
 fi
 # ... and none where sensors see the sky (the model's own grids, first run above).
 if grep -q "no sensor sees the sky" summary.json; then echo "FAIL notice of no sky where sensors see it"; failures=$((failures + 1)); fi
+# A double-sided glass shade drawn as two coincident polygons facing opposite ways (Honeybee's
+# tree crowns), beyond a window: filtered once, as the shade alone, and said so.
+cat > shade.rad <<'RAD'
+void glass window 0 0 3 .7 .7 .7
+void glass leaves 0 0 3 .5 .5 .5
+window polygon w 0 0 12 0 2 1 2 2 1 2 2 2.2 0 2 2.2
+leaves polygon front 0 0 12 -0.5 3.5 0.8 1.2 3.5 0.8 1.2 3.5 3 -0.5 3.5 3
+RAD
+{ cat shade.rad; printf 'leaves polygon back 0 0 12 -0.5 3.5 3 1.2 3.5 3 1.2 3.5 0.8 -0.5 3.5 0.8\n'; } > shade2.rad
+printf '1 -1.5 0.85 0 0 1\n0.5 0 0.85 0 1 0\n' > shade.pts
+"$daylit" df --components sc --scene shade.rad --grid shade.pts --out shade.csv --quiet
+"$daylit" df --components sc --scene shade2.rad --grid shade.pts --out shade2.csv 2> stderr.txt
+if [ "$(cut -d, -f10 shade.csv)" != "$(cut -d, -f10 shade2.csv)" ] || ! grep -q "pane 'back' and pane 'front' .* lie in one plane and overlap" stderr.txt; then
+  echo "FAIL a shade drawn twice in one plane is not filtered once, or not said so"; cat stderr.txt; paste -d' ' shade.csv shade2.csv; failures=$((failures + 1))
+fi
 "$daylit" illuminance --components sc --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < lux.csv)" -ne 401 ]; then echo "FAIL illuminance --model"; failures=$((failures + 1)); fi
 

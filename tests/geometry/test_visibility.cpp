@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "geometry/convex_pieces.hpp"
+#include "geometry/coplanar_panes.hpp"
 #include "geometry/input_checks.hpp"
 #include "illumination/solid_angle.hpp"
 #include "reference_quadrature.hpp"
@@ -578,4 +579,49 @@ TEST_CASE("two walls meeting at a corner that hide the window together are found
   }
   // What stays open is the same as the all-rational reference gives (checked inside sc()).
   CHECK(sc(open, p, GeometryMode::exact) > 0);
+}
+
+TEST_CASE("coplanar panes: pieces in one plane overlap when they share area, in any plane and orientation") {
+  // Pieces in the tilted plane x + y + z = 6 at dyadic (u, v), so that the input is exact and
+  // every piece stays whole.
+  const auto at = [](double u, double v) { return Vec3{1 + u, 2 + v, 3 - u - v}; };
+  const auto piece = [&](std::vector<std::pair<double, double>> uv, bool reversed) {
+    std::vector<Vec3> v;
+    for (auto [a, b] : uv) v.push_back(at(a, b));
+    if (reversed) std::reverse(v.begin(), v.end());
+    const std::vector<ConvexPiece> pieces = convex_pieces(polygon(v), 0);
+    REQUIRE(pieces.size() == 1);
+    return pieces[0];
+  };
+  const ConvexPiece square = piece({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, false);
+  for (const bool reversed : {false, true}) {
+    INFO("second piece reversed: " << reversed);
+    const ConvexPiece shifted = piece({{0.5, 0.25}, {1.5, 0.25}, {1.5, 1.25}, {0.5, 1.25}}, reversed);
+    REQUIRE(coplanar_pieces(shifted, square));
+    CHECK(overlap_in_plane(shifted, square));
+    CHECK(overlap_in_plane(square, shifted));
+    // A diamond whose corners stick out of the square; a triangle inside it; a copy of it.
+    CHECK(overlap_in_plane(piece({{-0.25, 0.5}, {0.5, -0.25}, {1.25, 0.5}, {0.5, 1.25}}, reversed), square));
+    CHECK(overlap_in_plane(piece({{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}}, reversed), square));
+    CHECK(overlap_in_plane(piece({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, reversed), square));
+    // Touching along an edge or at a corner, or apart: no overlap.
+    CHECK_FALSE(overlap_in_plane(piece({{1, 0}, {2, 0}, {2, 1}, {1, 1}}, reversed), square));
+    CHECK_FALSE(overlap_in_plane(piece({{1, 1}, {2, 1}, {2, 2}}, reversed), square));
+    CHECK_FALSE(overlap_in_plane(piece({{1.5, 0}, {2, 0}, {2, 1}}, reversed), square));
+    // Overlapping by 2^-20 of the side: overlap.
+    CHECK(overlap_in_plane(piece({{1 - 0x1p-20, 0}, {2, 0}, {2, 1}, {1 - 0x1p-20, 1}}, reversed), square));
+  }
+  // 1e-6 off the plane (a relative 6e-7 of the pair's extent) is another plane: panes in series.
+  std::vector<Vec3> off;
+  for (const Vec3& v : square.vertices) off.push_back(v + Vec3{1e-6, 0, 0});
+  CHECK_FALSE(coplanar_pieces(convex_pieces(polygon(off), 0)[0], square));
+
+  // Whole polygons: the pairs that overlap in one plane, earlier first.
+  const auto outline = [&](double u0) { return polygon({at(u0, 0), at(u0 + 1, 0), at(u0 + 1, 1), at(u0, 1)}); };
+  const std::vector<Polygon> panes{outline(0), outline(5), outline(0.5), outline(1)};
+  const auto pairs = overlapping_coplanar_polygons(panes);
+  // 0 and 2 overlap; 2 and 3 overlap; 0 and 3 only touch; 1 is apart.
+  REQUIRE(pairs.size() == 2);
+  CHECK(pairs[0] == std::pair<std::size_t, std::size_t>{0, 2});
+  CHECK(pairs[1] == std::pair<std::size_t, std::size_t>{2, 3});
 }

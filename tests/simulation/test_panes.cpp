@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -304,4 +305,38 @@ TEST_CASE("panes: annual coefficients count the sky through a pane and a window 
   bool through_pane = false;
   for (const SeenRegion& seen : a.regions) through_pane |= seen.aperture == 0 && seen.panes == std::vector<std::uint32_t>{1};
   CHECK(through_pane);
+}
+
+TEST_CASE("panes: two panes in one plane filter their overlap once, with the first listed, as Radiance does") {
+  // A double-sided shade drawn as two polygons facing opposite ways (Honeybee's tree crowns), 1.5 m
+  // beyond the window, seen through it. A ray crosses both at one point; Radiance meets the second
+  // at zero distance and passes it, so the overlap takes the first pane's transmittance once. The
+  // reference lists the second pane as its part outside the first, cut by hand: no two panes of it
+  // overlap. Taken as panes in series, each counting the directions through both, the overlap
+  // would pass 2T − 1 (0.2 for T = 0.6) instead of T.
+  const auto rectangle = [](double x0, double x1, bool reversed) {
+    std::vector<Vec3> v{{x0, 3.5, 0.8}, {x1, 3.5, 0.8}, {x1, 3.5, 3.0}, {x0, 3.5, 3.0}};
+    if (reversed) std::reverse(v.begin(), v.end());
+    return polygon(v);
+  };
+  Scene overlapping, cut_by_hand;
+  for (Scene* s : {&overlapping, &cut_by_hand}) {
+    s->apertures.push_back({window, 0.8});
+    s->apertures.push_back({rectangle(-0.5, 1.2, false), 0.6});
+  }
+  overlapping.apertures.push_back({rectangle(0.6, 2.5, true), 0.5});
+  cut_by_hand.apertures.push_back({rectangle(1.2, 2.5, true), 0.5});
+  // The cut's vertices are constructed (rounded to double): 1e-12 covers their rounding.
+  CHECK(relative_error(sc(overlapping), sc(cut_by_hand)) < 1e-12);
+
+  // The same pane twice, the copy reversed: as the pane alone.
+  Scene once = cut_by_hand, twice;
+  once.apertures.pop_back();
+  twice = once;
+  twice.apertures.push_back({rectangle(-0.5, 1.2, true), 0.6});
+  CHECK(relative_error(sc(twice), sc(once)) < 1e-12);
+  // and less than the window alone: the pane filters
+  Scene window_only;
+  window_only.apertures.push_back({window, 0.8});
+  CHECK(sc(once) < 0.95 * sc(window_only));
 }

@@ -1,0 +1,116 @@
+#include "geometry/coplanar_panes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace daylit {
+
+namespace {
+
+struct Bounds {
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  void add(const std::vector<Vec3>& vs) {
+    for (const Vec3& v : vs) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+  }
+};
+
+Bounds bounds_of(const std::vector<ConvexPiece>& pieces) {
+  Bounds b;
+  for (const ConvexPiece& p : pieces) b.add(p.vertices);
+  return b;
+}
+
+double joint_extent(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  Bounds box;
+  box.add(a);
+  box.add(b);
+  return norm(box.hi - box.lo);
+}
+
+bool meet(const Bounds& x, const Bounds& y, double margin) {
+  return x.lo.x <= y.hi.x + margin && y.lo.x <= x.hi.x + margin && x.lo.y <= y.hi.y + margin &&
+         y.lo.y <= x.hi.y + margin && x.lo.z <= y.hi.z + margin && y.lo.z <= x.hi.z + margin;
+}
+
+// The normal (v_b − v_0) × (v_c − v_0) of a piece: its vertices wind counter-clockwise about it.
+Vec3 winding_normal(const ConvexPiece& p) {
+  const auto& v = p.vertices;
+  return cross(v[p.base_b] - v[0], v[p.base_c] - v[0]);
+}
+
+constexpr double kCoplanar = 1e-9;
+
+}  // namespace
+
+bool coplanar_pieces(const ConvexPiece& a, const ConvexPiece& b) {
+  const double tolerance = kCoplanar * joint_extent(a.vertices, b.vertices);
+  const auto within = [&](const ConvexPiece& plane, const ConvexPiece& other) {
+    const Vec3 n = winding_normal(plane);
+    const double length = norm(n);
+    if (!(length > 0)) return false;
+    return std::all_of(other.vertices.begin(), other.vertices.end(), [&](const Vec3& v) {
+      return std::abs(dot(n, v - plane.vertices[0])) <= tolerance * length;
+    });
+  };
+  return within(a, b) && within(b, a);
+}
+
+bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w) {
+  const double extent = joint_extent(q.vertices, w.vertices);
+  const Vec3 n = winding_normal(w);
+  const auto& wv = w.vertices;
+  std::vector<Vec3> inside = q.vertices;
+  for (std::size_t k = 0; k < wv.size(); ++k) {
+    const Vec3& a = wv[k];
+    const Vec3 m = cross(wv[(k + 1) % wv.size()] - a, n);  // in w's plane, away from w
+    std::vector<double> s;
+    for (const Vec3& v : inside) s.push_back(dot(m, v - a));
+    std::vector<Vec3> next;
+    for (std::size_t i = 0; i < inside.size(); ++i) {
+      const std::size_t j = (i + 1) % inside.size();
+      if (s[i] <= 0) next.push_back(inside[i]);
+      if ((s[i] < 0 && s[j] > 0) || (s[i] > 0 && s[j] < 0))
+        next.push_back(inside[i] + (s[i] / (s[i] - s[j])) * (inside[j] - inside[i]));
+    }
+    // No area beyond the rounding of the cut's vertices at this scale: q lies outside this edge's
+    // line, or touches it.
+    if (next.size() < 3 || !(norm(newell_normal(next)) > 1e-12 * extent * extent)) return false;
+    inside = std::move(next);
+  }
+  return true;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(const std::vector<std::vector<ConvexPiece>>& panes) {
+  std::vector<Bounds> boxes;
+  for (const auto& pieces : panes) boxes.push_back(bounds_of(pieces));
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < panes.size(); ++i)
+    for (std::size_t j = i + 1; j < panes.size(); ++j) {
+      if (panes[i].empty() || panes[j].empty()) continue;
+      const double margin = kCoplanar * norm(boxes[i].hi - boxes[i].lo) + kCoplanar * norm(boxes[j].hi - boxes[j].lo);
+      if (!meet(boxes[i], boxes[j], margin)) continue;
+      const bool overlap = std::any_of(panes[j].begin(), panes[j].end(), [&](const ConvexPiece& q) {
+        return std::any_of(panes[i].begin(), panes[i].end(),
+                           [&](const ConvexPiece& w) { return coplanar_pieces(q, w) && overlap_in_plane(q, w); });
+      });
+      if (overlap) pairs.emplace_back(i, j);
+    }
+  return pairs;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_polygons(const std::vector<Polygon>& polygons) {
+  std::vector<std::vector<ConvexPiece>> pieces(polygons.size());
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    try {
+      pieces[i] = convex_pieces(polygons[i], i);
+    } catch (const Error&) {
+      // a polygon the engine refuses is reported there
+    }
+  }
+  return overlapping_coplanar_panes(pieces);
+}
+
+}  // namespace daylit
