@@ -273,6 +273,14 @@ Walk walk(const TracerScene& s, const Vec3& o, const Vec3& d, std::uint32_t from
       return w;
     }
     const std::uint32_t a = hit.object - n_o;
+    // A pane met where the last one was crossed (a pane drawn twice, a double-sided shade in one
+    // plane) is passed, as Radiance passes it (within FTINY of the transmitted ray's origin) and
+    // as the visibility counts it (geometry/coplanar_panes.hpp).
+    if (crossed != kNone && hit.t <= t_min * (1 + 1e-12)) {
+      t_min = hit.t;
+      crossed = hit.object;
+      continue;
+    }
     const double t = aperture_transmittance(s.apertures[a], d), rho = s.apertures[a].reflectance;
     if (rho > 0) {
       const double pass = std::max(t, 0.0) / (std::max(t, 0.0) + rho);  // the fit's T may dip below 0 at grazing
