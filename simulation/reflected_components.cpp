@@ -895,10 +895,18 @@ struct SensorTerms {
   struct Term {
     std::uint32_t element = 0;
     double difference = 0, spread = 0;
-    // What splitting P again is expected to take off the estimate: three quarters of the
-    // difference (second order: a quarter is left) and half of the spread (first order in the
-    // angle the element subtends: each child spans half of it).
-    double reduction() const { return 0.75 * difference + 0.5 * spread; }
+    // What splitting P again is expected to take off the estimate: seven eighths of the
+    // difference and half of the spread (first order in the angle the element subtends: each
+    // child spans half of it). Second order alone would leave a quarter of the difference; what a
+    // split leaves was measured to vary (splitting every element left 1/12 of the worst estimate
+    // of the room sample at its default size, 1/5 of a 2 m test room's at 0.5 m, 1/3 at 1.5 m).
+    // A plan too hopeful costs another round, which keeps what it does not split; one too timid
+    // costs a mesh several times too fine, whose rows grow as its square: counting on 3/4, no
+    // round could plan a sensor's estimate down more than fourfold, so for 1 % of the room
+    // sample's IRC it flagged every element (2,688, 13.9 s), where 7/8 flags 1,140 and meets the
+    // tolerance in 3.0 s; the office at 0.02 DF points: 3,988 against 4,084 elements, both
+    // ending at 0.020 in two rounds (2026-12-06).
+    double reduction() const { return 0.875 * difference + 0.5 * spread; }
   };
   // The split elements' terms, largest reduction first, at most kTermsKept: the candidates for the
   // next local refinement. `total`: the differences of all split elements summed; `spread`: the
