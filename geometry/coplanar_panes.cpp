@@ -92,9 +92,14 @@ std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(cons
       if (panes[i].empty() || panes[j].empty()) continue;
       const double margin = kCoplanar * norm(boxes[i].hi - boxes[i].lo) + kCoplanar * norm(boxes[j].hi - boxes[j].lo);
       if (!meet(boxes[i], boxes[j], margin)) continue;
+      // Every piece of each in the plane of every piece of the other: then a direction that
+      // crosses both panes crosses that plane once, in their overlap, whichever pieces it meets.
+      const bool one_plane = std::all_of(panes[j].begin(), panes[j].end(), [&](const ConvexPiece& q) {
+        return std::all_of(panes[i].begin(), panes[i].end(), [&](const ConvexPiece& w) { return coplanar_pieces(q, w); });
+      });
+      if (!one_plane) continue;
       const bool overlap = std::any_of(panes[j].begin(), panes[j].end(), [&](const ConvexPiece& q) {
-        return std::any_of(panes[i].begin(), panes[i].end(),
-                           [&](const ConvexPiece& w) { return coplanar_pieces(q, w) && overlap_in_plane(q, w); });
+        return std::any_of(panes[i].begin(), panes[i].end(), [&](const ConvexPiece& w) { return overlap_in_plane(q, w); });
       });
       if (overlap) pairs.emplace_back(i, j);
     }

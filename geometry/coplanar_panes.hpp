@@ -32,8 +32,10 @@ bool coplanar_pieces(const ConvexPiece& a, const ConvexPiece& b);
 // when they touch along an edge). The part of q inside w, cut at the lines of w's edges in turn.
 bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w);
 
-// The pairs (i, j), i < j, of panes (each given as its convex pieces) that lie in one plane and
-// overlap, in increasing order.
+// The pairs (i, j), i < j, of panes (each given as its convex pieces) that lie in one plane (every
+// piece of each coplanar with every piece of the other) and overlap, in increasing order. Panes
+// whose pieces are not all in one plane (a warped polygon fanned into triangles, partly in the
+// other's plane) are left as panes in series: there a direction may cross both at two points.
 std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(const std::vector<std::vector<ConvexPiece>>& panes);
 
 // The same for polygons (for the notice that says which panes filter once).

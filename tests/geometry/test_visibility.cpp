@@ -624,4 +624,10 @@ TEST_CASE("coplanar panes: pieces in one plane overlap when they share area, in 
   REQUIRE(pairs.size() == 2);
   CHECK(pairs[0] == std::pair<std::size_t, std::size_t>{0, 2});
   CHECK(pairs[1] == std::pair<std::size_t, std::size_t>{2, 3});
+  // A pane folded along a diagonal, one half in the square's plane: not one plane with it, so a
+  // direction may cross both at two points, and the two stay panes in series.
+  const ConvexPiece flat_half = piece({{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}}, false);
+  const ConvexPiece folded_half = convex_pieces(polygon({at(0.25, 0.25), at(0.75, 0.75), at(0.25, 0.75) + Vec3{0.25, 0, 0}}), 0)[0];
+  CHECK(overlapping_coplanar_panes({{square}, {flat_half, folded_half}}).empty());
+  CHECK(overlapping_coplanar_panes({{square}, {flat_half}}).size() == 1);
 }
