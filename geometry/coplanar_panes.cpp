@@ -58,7 +58,11 @@ bool coplanar_pieces(const ConvexPiece& a, const ConvexPiece& b) {
   return within(a, b) && within(b, a);
 }
 
-bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w) {
+namespace {
+
+// The part of q inside w (q cut at the lines of w's edges in turn), or nothing when it has no area
+// beyond the rounding of the cut's vertices at the pieces' scale.
+std::vector<Vec3> part_inside(const ConvexPiece& q, const ConvexPiece& w) {
   const double extent = joint_extent(q.vertices, w.vertices);
   const Vec3 n = winding_normal(w);
   const auto& wv = w.vertices;
@@ -75,13 +79,18 @@ bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w) {
       if ((s[i] < 0 && s[j] > 0) || (s[i] > 0 && s[j] < 0))
         next.push_back(inside[i] + (s[i] / (s[i] - s[j])) * (inside[j] - inside[i]));
     }
-    // No area beyond the rounding of the cut's vertices at this scale: q lies outside this edge's
-    // line, or touches it.
-    if (next.size() < 3 || !(norm(newell_normal(next)) > 1e-12 * extent * extent)) return false;
+    // q lies outside this edge's line, or touches it
+    if (next.size() < 3 || !(norm(newell_normal(next)) > 1e-12 * extent * extent)) return {};
     inside = std::move(next);
   }
-  return true;
+  return inside;
 }
+
+double area_of(const std::vector<Vec3>& v) { return 0.5 * norm(newell_normal(v)); }
+
+}  // namespace
+
+bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w) { return !part_inside(q, w).empty(); }
 
 std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(const std::vector<std::vector<ConvexPiece>>& panes) {
   std::vector<Bounds> boxes;
@@ -106,7 +115,7 @@ std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(cons
   return pairs;
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_polygons(const std::vector<Polygon>& polygons) {
+std::vector<CoplanarOverlap> coplanar_overlaps(const std::vector<Polygon>& polygons) {
   std::vector<std::vector<ConvexPiece>> pieces(polygons.size());
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     try {
@@ -115,7 +124,17 @@ std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_polygons(c
       // a polygon the engine refuses is reported there
     }
   }
-  return overlapping_coplanar_panes(pieces);
+  std::vector<CoplanarOverlap> out;
+  for (const auto& [earlier, later] : overlapping_coplanar_panes(pieces)) {
+    // The pieces of a pane do not overlap each other: the overlaps of piece pairs add up.
+    double common = 0, whole = 0;
+    for (const ConvexPiece& q : pieces[later]) {
+      whole += area_of(q.vertices);
+      for (const ConvexPiece& w : pieces[earlier]) common += area_of(part_inside(q, w));
+    }
+    out.push_back({earlier, later, whole > 0 ? std::min(1.0, common / whole) : 0.0});
+  }
+  return out;
 }
 
 }  // namespace daylit

@@ -38,7 +38,13 @@ bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w);
 // other's plane) are left as panes in series: there a direction may cross both at two points.
 std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(const std::vector<std::vector<ConvexPiece>>& panes);
 
-// The same for polygons (for the notice that says which panes filter once).
-std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_polygons(const std::vector<Polygon>& polygons);
+// The same for polygons, with the share of the later one's area that lies inside the earlier
+// (for the notice that says which panes filter once, and for the reflected components, where a
+// pane inside another is the same pane: simulation/model_inputs.cpp).
+struct CoplanarOverlap {
+  std::size_t earlier = 0, later = 0;
+  double later_share = 0;  // of the later polygon's area, within the rounding of the cut's vertices
+};
+std::vector<CoplanarOverlap> coplanar_overlaps(const std::vector<Polygon>& polygons);
 
 }  // namespace daylit

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "geometry/coplanar_panes.hpp"
 #include "geometry/honeybee_model.hpp"
@@ -121,15 +122,45 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   if (in.scene.apertures.size() > 1) {
     std::vector<Polygon> panes;
     for (const Aperture& a : in.scene.apertures) panes.push_back(a.polygon);
-    if (const auto pairs = overlapping_coplanar_polygons(panes); !pairs.empty()) {
-      const Polygon& first = panes[pairs[0].first];
-      const Polygon& second = panes[pairs[0].second];
-      in.scene.notices.push_back(
-          second.where.str() + ": pane '" + second.name + "' and pane '" + first.name + "' (" + first.where.str() +
-          ") lie in one plane and overlap" +
-          (pairs.size() > 1 ? " (and " + std::to_string(pairs.size() - 1) + " more pairs alike)" : "") +
-          ": a ray crosses both at one point, so where they overlap the light passes one pane, the first listed, "
-          "as in Radiance (whose ray meets the second at zero distance and passes it); a double-sided shade drawn twice?");
+    if (const auto overlaps = coplanar_overlaps(panes); !overlaps.empty()) {
+      // A pane that lies all but a thousandth of its area inside an earlier one in its plane is
+      // that pane drawn again: it reflects nothing, the earlier one reflecting for both (the part
+      // outside, at most 1e-3 of its area, is left out of the reflected components).
+      std::size_t silenced = 0, doubled = 0;
+      double outside = 0;
+      for (const CoplanarOverlap& o : overlaps) {
+        Aperture& later = in.scene.apertures[o.later];
+        if (!(later.reflectance > 0)) continue;
+        if (o.later_share >= 1 - 1e-3) {
+          later.reflectance = 0;
+          ++silenced;
+          outside = std::max(outside, 1 - o.later_share);
+        } else {
+          ++doubled;
+        }
+      }
+      const Polygon& first = panes[overlaps[0].earlier];
+      const Polygon& second = panes[overlaps[0].later];
+      std::string notice = second.where.str() + ": pane '" + second.name + "' and pane '" + first.name + "' (" +
+                           first.where.str() + ") lie in one plane and overlap" +
+                           (overlaps.size() > 1 ? " (and " + std::to_string(overlaps.size() - 1) + " more pairs alike)" : "") +
+                           ": a ray crosses both at one point, so where they overlap the light passes one pane, the first "
+                           "listed, as in Radiance (whose ray meets the second at zero distance and passes it); a "
+                           "double-sided shade drawn twice?";
+      if (silenced > 0) {
+        char share[32];
+        std::snprintf(share, sizeof share, "%.2g", 100 * outside);
+        notice += " In the reflected components " + std::to_string(silenced) +
+                  (silenced == 1 ? " such pane lies" : " such panes lie") +
+                  " within the first and reflects nothing, the first reflecting for both" +
+                  (outside > 0 ? std::string(" (at most ") + share +
+                                     " % of its area lies outside the first: that part's reflection is left out)."
+                               : std::string("."));
+      }
+      if (doubled > 0)
+        notice += " In the reflected components the overlap of " + std::to_string(doubled) +
+                  (doubled == 1 ? " pair" : " pairs") + " that overlap only in part reflects twice.";
+      in.scene.notices.push_back(std::move(notice));
     }
   }
   for (const auto& grid : in.grids)

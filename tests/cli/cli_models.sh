@@ -65,6 +65,12 @@ printf '1 -1.5 0.85 0 0 1\n0.5 0 0.85 0 1 0\n' > shade.pts
 if [ "$(cut -d, -f10 shade.csv)" != "$(cut -d, -f10 shade2.csv)" ] || ! grep -q "pane 'back' and pane 'front' .* lie in one plane and overlap" stderr.txt; then
   echo "FAIL a shade drawn twice in one plane is not filtered once, or not said so"; cat stderr.txt; paste -d' ' shade.csv shade2.csv; failures=$((failures + 1))
 fi
+# ... nor reflected twice: the copy lies within the first and reflects nothing.
+"$daylit" df --components all --scene shade.rad --grid shade.pts --out shade.csv --quiet
+"$daylit" df --components all --scene shade2.rad --grid shade.pts --out shade2.csv 2> stderr.txt
+if [ "$(cut -d, -f9-12 shade.csv)" != "$(cut -d, -f9-12 shade2.csv)" ] || ! grep -q "1 such pane lies within the first and reflects nothing" stderr.txt; then
+  echo "FAIL a shade drawn twice reflects twice, or is not said so"; cat stderr.txt; paste -d' ' shade.csv shade2.csv; failures=$((failures + 1))
+fi
 "$daylit" illuminance --components sc --model "$data/model_radiance_grid_views.hbjson" --sky cie-overcast --diffuse-horizontal 10000 --out lux.csv --quiet
 if [ $? -ne 0 ] || [ "$(wc -l < lux.csv)" -ne 401 ]; then echo "FAIL illuminance --model"; failures=$((failures + 1)); fi
 

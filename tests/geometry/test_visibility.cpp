@@ -619,11 +619,17 @@ TEST_CASE("coplanar panes: pieces in one plane overlap when they share area, in 
   // Whole polygons: the pairs that overlap in one plane, earlier first.
   const auto outline = [&](double u0) { return polygon({at(u0, 0), at(u0 + 1, 0), at(u0 + 1, 1), at(u0, 1)}); };
   const std::vector<Polygon> panes{outline(0), outline(5), outline(0.5), outline(1)};
-  const auto pairs = overlapping_coplanar_polygons(panes);
-  // 0 and 2 overlap; 2 and 3 overlap; 0 and 3 only touch; 1 is apart.
+  const auto pairs = coplanar_overlaps(panes);
+  // 0 and 2 overlap by half of 2; 2 and 3 by half of 3; 0 and 3 only touch; 1 is apart.
   REQUIRE(pairs.size() == 2);
-  CHECK(pairs[0] == std::pair<std::size_t, std::size_t>{0, 2});
-  CHECK(pairs[1] == std::pair<std::size_t, std::size_t>{2, 3});
+  CHECK((pairs[0].earlier == 0 && pairs[0].later == 2));
+  CHECK((pairs[1].earlier == 2 && pairs[1].later == 3));
+  CHECK(std::abs(pairs[0].later_share - 0.5) < 1e-14);
+  CHECK(std::abs(pairs[1].later_share - 0.5) < 1e-14);
+  // A copy inside: all of it.
+  const auto inside = coplanar_overlaps({outline(0), polygon({at(0.25, 0.25), at(0.75, 0.25), at(0.75, 0.75)})});
+  REQUIRE(inside.size() == 1);
+  CHECK(inside[0].later_share == Approx(1).epsilon(1e-14));
   // A pane folded along a diagonal, one half in the square's plane: not one plane with it, so a
   // direction may cross both at two points, and the two stay panes in series.
   const ConvexPiece flat_half = piece({{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}}, false);
