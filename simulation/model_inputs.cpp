@@ -151,10 +151,11 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
         char share[32];
         std::snprintf(share, sizeof share, "%.2g", 100 * outside);
         notice += " In the reflected components " + std::to_string(silenced) +
-                  (silenced == 1 ? " such pane lies" : " such panes lie") +
-                  " within the first and reflects nothing, the first reflecting for both" +
+                  (silenced == 1 ? " such pane lies within the first and reflects nothing"
+                                 : " such panes lie within the first of their pair and reflect nothing") +
+                  ", the first reflecting for both" +
                   (outside > 0 ? std::string(" (at most ") + share +
-                                     " % of its area lies outside the first: that part's reflection is left out)."
+                                     " % of a pane's area lies outside the first: that part's reflection is left out)."
                                : std::string("."));
       }
       if (doubled > 0)
