@@ -3,34 +3,27 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/box.hpp"
+
 namespace daylit {
 
 namespace {
 
-struct Bounds {
-  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  void add(const std::vector<Vec3>& vs) {
-    for (const Vec3& v : vs) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
-  }
-};
-
-Bounds bounds_of(const std::vector<ConvexPiece>& pieces) {
-  Bounds b;
-  for (const ConvexPiece& p : pieces) b.add(p.vertices);
+Box box_of(const std::vector<ConvexPiece>& pieces) {
+  Box b;
+  for (const ConvexPiece& p : pieces)
+    for (const Vec3& v : p.vertices) b.add(v);
   return b;
 }
 
 double joint_extent(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  Bounds box;
-  box.add(a);
-  box.add(b);
+  Box box;
+  for (const Vec3& v : a) box.add(v);
+  for (const Vec3& v : b) box.add(v);
   return norm(box.hi - box.lo);
 }
 
-bool meet(const Bounds& x, const Bounds& y, double margin) {
+bool meet(const Box& x, const Box& y, double margin) {
   return x.lo.x <= y.hi.x + margin && y.lo.x <= x.hi.x + margin && x.lo.y <= y.hi.y + margin &&
          y.lo.y <= x.hi.y + margin && x.lo.z <= y.hi.z + margin && y.lo.z <= x.hi.z + margin;
 }
@@ -93,8 +86,8 @@ double area_of(const std::vector<Vec3>& v) { return 0.5 * norm(newell_normal(v))
 bool overlap_in_plane(const ConvexPiece& q, const ConvexPiece& w) { return !part_inside(q, w).empty(); }
 
 std::vector<std::pair<std::size_t, std::size_t>> overlapping_coplanar_panes(const std::vector<std::vector<ConvexPiece>>& panes) {
-  std::vector<Bounds> boxes;
-  for (const auto& pieces : panes) boxes.push_back(bounds_of(pieces));
+  std::vector<Box> boxes;
+  for (const auto& pieces : panes) boxes.push_back(box_of(pieces));
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < panes.size(); ++i)
     for (std::size_t j = i + 1; j < panes.size(); ++j) {

@@ -27,6 +27,7 @@
 #include <string>
 #include <type_traits>
 
+#include "geometry/box.hpp"
 #include "geometry/convex_pieces.hpp"
 #include "geometry/coplanar_panes.hpp"
 #include "geometry/error.hpp"
@@ -160,20 +161,6 @@ bool unobstructed_directions(const Vec3& p, const Vec3& n, const ConvexPiece& pi
 
 // ---------------------------------------------------------------------------------------------
 // Culling hierarchy.
-
-struct Box {
-  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  void add(const Vec3& v) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  }
-  void add(const Box& b) {
-    add(b.lo);
-    add(b.hi);
-  }
-  Vec3 center() const { return 0.5 * (lo + hi); }
-  Vec3 half() const { return 0.5 * (hi - lo); }
-};
 
 // A plane through the receiver, m·(x − p) ≥ 0 on the side that may matter, known in double only
 // approximately; `scale` bounds |m| before cancellation so that the margin covers its rounding.
