@@ -21,6 +21,7 @@
 
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
 #include "materials/surface_reflectance.hpp"
@@ -369,26 +370,26 @@ std::function<int()> add_annual_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--context-min-angle", f.context_min_angle_deg,
                   "Leave out context buildings smaller than this from every aperture (degrees; default 0.1)")
-      ->check(CLI::Range(0.0, 179.0));
+      ->check(number_in(0.0, 179.0));
   cmd->add_option("--perez-clamps", opt->perez_clamps,
                   "radiance (default for annual runs: Radiance's limits, each counted in the summary) or none (the published "
                   "model; hours it cannot serve are left dark and counted)")
       ->check(CLI::IsMember({"none", "radiance"}));
-  cmd->add_option("--degree", opt->annual.degree, "Degree of the sky basis in u_z (default 32)")->check(CLI::Range(0, 64));
+  cmd->add_option("--degree", opt->annual.degree, "Degree of the sky basis in u_z (default 32)")->check(number_in(0, 64));
   cmd->add_option("--circumsolar-tolerance", opt->annual.circumsolar_tolerance,
                   "Relative tolerance of the circumsolar cubature per region (default 1e-6)")
-      ->check(CLI::Range(1e-12, 1e-1));
+      ->check(number_in(1e-12, 1e-1));
   cmd->add_option("--closed-blind-transmittance", opt->annual.closed_blind_transmittance,
                   "Share of a window group's light that passes when its blinds are closed (default 0.2)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_in(0.0, 1.0));
   cmd->add_option("--sun-patches", opt->annual.sun_patch_mf,
                   "Put the sun's disk at the centre of its Reinhart MF patch (1 = Tregenza's 145 ... 6) instead of the true "
                   "sun, to measure what a patch-based sky does to ASE (default 0: the true sun)")
-      ->check(CLI::Range(0, 6));
+      ->check(number_in(0, 6));
   cmd->add_option("--sky-patches", opt->annual.sky_patch_mf,
                   "Take the sky in Reinhart MF patches (1 = Tregenza's 145 ... 6), each uniform at its centre's luminance "
                   "as patch-based tools do, integrated exactly over the visible regions (default 0: the exact sky)")
-      ->check(CLI::Range(0, 6));
+      ->check(number_in(0, 6));
   add_reflection_options(*cmd, opt->reflections, "illuminance");
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
@@ -397,10 +398,10 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   cmd->add_option("--pressure-hpa", opt->annual.pressure_hpa, "Local pressure for refraction (hPa; default 1013.25)")
-      ->check(CLI::Range(0.0, 5000.0));
+      ->check(number_in(0.0, 5000.0));
   cmd->add_option("--temperature-c", opt->annual.temperature_c, "Local temperature for refraction (°C; default 10)")
-      ->check(CLI::Range(-273.0, 6000.0));
-  cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+      ->check(number_in(-273.0, 6000.0));
+  cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(non_negative_number());
   cmd->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_annual(*opt); };
 }

@@ -19,6 +19,7 @@
 
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
@@ -305,7 +306,7 @@ std::function<int()> add_df_command(CLI::App& app) {
                  "daylit before 2026-12, to reproduce its results to the last bit: the same region partitioned otherwise, "
                  "so results differ in the last digits, a few 1e-14; far slower among many occluders)")
       ->check(CLI::IsMember({"as-built", "front-to-back"}));
-  df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  df->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(non_negative_number());
   df->add_option("--site", files.site,
                  "Site JSON: {\"latitude_deg\", \"longitude_deg\", \"elevation_m\", \"north_deg\"} (north_deg: true north's angle "
                  "clockwise from the model's +y, seen from above) or {\"utm\": {\"zone\", \"northern\"}, \"origin_easting_m\", "
@@ -318,7 +319,7 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--context-min-angle", files.context_min_angle_deg,
                  "Leave out context buildings whose angular size from every aperture is below this (degrees; default 0.1, "
                  "0: keep all that can be seen); the summary bounds the change it makes")
-      ->check(CLI::Range(0.0, 179.0));
+      ->check(number_in(0.0, 179.0));
   df->add_flag("--gradient", opt->gradient,
                "Also the gradient of DF with respect to the sensor's position (exact: the boundary term of Arvo's irradiance "
                "Jacobian, occluder edges included): CSV columns ddf_dx, ddf_dy, ddf_dz in % per model unit");
@@ -329,13 +330,13 @@ std::function<int()> add_df_command(CLI::App& app) {
                "stderr give the estimated error of the grid's mean DF before and after");
   df->add_option("--refine-tolerance", opt->refine_tolerance,
                  "Estimated error of a cell's mean DF above which --refine splits it (DF percentage points; default 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_reflection_options(*df, opt->reflections, "DF");
   df->add_option("--median-diffuse-lux", opt->median_diffuse_lux,
                  "The site's median diffuse horizontal illuminance over the daylight hours (lux; EN 17037 Table A.3): "
                  "the summary then assesses each grid by EN 17037's daylight-factor method (targets 100 E/E_med for its "
                  "three levels, over 50 % and 95 % of the sensors)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   df->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_df(*opt); };
 }

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/number_checks.hpp"
 #include "geometry/error.hpp"
 #include "geometry/obj_model.hpp"
 #include "report/staged_output.hpp"
@@ -75,7 +76,7 @@ std::function<int()> add_grid_command(CLI::App& app) {
   cmd->add_option_function<double>(
          "--obj-scale", [o = opt.get()](double s) { o->sources.obj.metres_per_unit = s; o->obj_options_given = true; },
          "With an OBJ --model: metres per unit (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option_function<std::string>(
          "--obj-up",
          [o = opt.get()](const std::string& up) {
@@ -87,10 +88,10 @@ std::function<int()> add_grid_command(CLI::App& app) {
   cmd->add_option("--scene", opt->sources.rad_files, "Radiance files (.rad) holding the floor polygons")->check(CLI::ExistingFile);
   cmd->add_option("--floor-modifier", opt->sources.floor_modifiers,
                   "With --scene: the modifiers of the floor polygons (default: every horizontal polygon facing up)");
-  cmd->add_option("--spacing", opt->grid.spacing, "Distance between sensors (model units; default 0.5)")->check(CLI::PositiveNumber);
+  cmd->add_option("--spacing", opt->grid.spacing, "Distance between sensors (model units; default 0.5)")->check(positive_number());
   cmd->add_option("--height", opt->grid.height, "Height of the sensors above the floor (default 0.85)");
   cmd->add_option("--offset", opt->grid.wall_offset, "Least distance of a sensor from the floor's edges (default 0.5)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--out", opt->out, "Folder for the .pts files (one per grid)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No notices on stderr");
   return [opt] { return run_grid(*opt); };

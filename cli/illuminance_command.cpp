@@ -25,6 +25,7 @@
 
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/reflection_options.hpp"
 #include "simulation/model_inputs.hpp"
 #include "report/progress_bar.hpp"
@@ -573,18 +574,18 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
                   "bench skies`)")
       ->check(CLI::IsMember({"fit", "quadrature"}));
   cmd->add_option("--tolerance", opt->tolerance, "Relative tolerance of the cubature (default 1e-9)")
-      ->check(CLI::Range(1e-14, 1e-2));
+      ->check(number_in(1e-14, 1e-2));
   opt->diffuse_horizontal_option =
       cmd->add_option("--diffuse-horizontal", opt->diffuse_horizontal,
                       "The sky's unobstructed horizontal illuminance E_out (lux); sets the zenith luminance")
-          ->check(CLI::Range(0.0, 1e6));
+          ->check(number_in(0.0, 1e6));
   opt->zenith_luminance_option = cmd->add_option("--zenith-luminance", opt->zenith_luminance, "The sky's zenith luminance L_z (cd/m2)")
-                                     ->check(CLI::Range(0.0, 1e7))
+                                     ->check(number_in(0.0, 1e7))
                                      ->excludes(opt->diffuse_horizontal_option);
   opt->direct_normal_option =
       cmd->add_option("--direct-normal", opt->direct_normal,
                       "The sun's direct normal illuminance (lux; default 0: no sun; perez: default from the efficacy)")
-          ->check(CLI::Range(0.0, 2e5));
+          ->check(number_in(0.0, 2e5));
   cmd->add_option("--weather", opt->weather,
                   "perez: an EnergyPlus .epw or Radiance .wea file; --time picks the hour that holds it (EPW hours end at "
                   "their time stamp); the site comes from the file unless --site is given")
@@ -592,13 +593,13 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
   opt->diffuse_irradiance_option =
       cmd->add_option("--diffuse-horizontal-irradiance", opt->diffuse_irradiance,
                       "perez without --weather: the hour's diffuse horizontal irradiance (W/m2)")
-          ->check(CLI::Range(0.0, 2000.0));
+          ->check(number_in(0.0, 2000.0));
   opt->direct_irradiance_option = cmd->add_option("--direct-normal-irradiance", opt->direct_irradiance,
                                                   "perez without --weather: the hour's direct normal irradiance (W/m2)")
-                                      ->check(CLI::Range(0.0, 2000.0));
+                                      ->check(number_in(0.0, 2000.0));
   opt->dew_point_option = cmd->add_option("--dew-point", opt->dew_point_c,
                                           "perez without --weather: dew point for the efficacies (C; default 11)")
-                              ->check(CLI::Range(-100.0, 60.0));
+                              ->check(number_in(-100.0, 60.0));
   cmd->add_option("--perez-clamps", opt->perez_clamps,
                   "perez: none (the published model, default; hours it cannot represent are refused) or radiance "
                   "(gendaylit's limits: sun altitude <= 87 deg, Delta >= 0.2 for 1.065 < epsilon < 2.8, cos(theta) >= "
@@ -606,31 +607,31 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       ->check(CLI::IsMember({"none", "radiance"}));
   auto* time = cmd->add_option("--time", opt->time, "Date and time with UTC offset, e.g. 2026-06-21T13:00:00+02:00 (needs --site, or --weather for perez)");
   opt->sun_zenith_option = cmd->add_option("--sun-zenith", opt->sun_zenith_deg, "The sun's zenith angle (degrees)")
-                               ->check(CLI::Range(0.0, 180.0))
+                               ->check(number_in(0.0, 180.0))
                                ->excludes(time);
   auto* azimuth = cmd->add_option("--sun-azimuth", opt->sun_azimuth_deg,
                                   "The sun's azimuth (degrees clockwise from true north; north is +y without --site)")
-                      ->check(CLI::Range(-360.0, 360.0))
+                      ->check(number_in(-360.0, 360.0))
                       ->excludes(time);
   opt->sun_zenith_option->needs(azimuth);
   azimuth->needs(opt->sun_zenith_option);
   cmd->add_option("--pressure-hpa", opt->pressure_hpa, "Local pressure for refraction (hPa; default 1013.25)")
-      ->check(CLI::Range(0.0, 5000.0));
+      ->check(number_in(0.0, 5000.0));
   cmd->add_option("--temperature-c", opt->temperature_c, "Local temperature for refraction (°C; default 10)")
-      ->check(CLI::Range(-273.0, 6000.0));
+      ->check(number_in(-273.0, 6000.0));
   cmd->add_option("--site", f.site, "Site JSON (as for `daylit df`): places the model on the Earth")->check(CLI::ExistingFile);
   cmd->add_option("--context", f.context, "GeoJSON of neighbouring buildings (as for `daylit df`); needs --site")
       ->check(CLI::ExistingFile);
   cmd->add_option("--context-min-angle", f.context_min_angle_deg,
                   "Leave out context buildings smaller than this from every aperture (degrees; default 0.1), except those "
                   "in the sun's beam, which may hide part of its disk")
-      ->check(CLI::Range(0.0, 179.0));
+      ->check(number_in(0.0, 179.0));
   cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
   cmd->add_option("--summary", opt->summary, "JSON file for per-grid statistics, the sky, the sun and what was left out");
   cmd->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
-  cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(non_negative_number());
   add_reflection_options(*cmd, opt->reflections, "illuminance");
   cmd->add_flag("--quiet", opt->quiet, "No progress bar or notices on stderr");
   return [opt] { return run_illuminance(*opt); };

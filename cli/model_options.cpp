@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/number_checks.hpp"
 #include "simulation/model_inputs.hpp"
 
 namespace daylit::cli {
@@ -25,7 +26,7 @@ void add_model_options(CLI::App& command, ModelFiles& files) {
   command.add_option("--obj-scale", files.obj.metres_per_unit,
                      "With an OBJ --model: metres per unit of the file (default 1; millimetres: 0.001, inches: 0.0254). "
                      "--grid, --site and --context are in metres")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option_function<std::string>(
           "--obj-up", [&files](const std::string& up) { files.obj.up = up == "y" ? ObjUpAxis::y : ObjUpAxis::z; },
@@ -35,7 +36,7 @@ void add_model_options(CLI::App& command, ModelFiles& files) {
   command.add_option("--bsdf-transmittance", files.bsdf_transmittance,
                      "Uniform visible transmittance (0 to 1) for apertures of Radiance's BSDF/aBSDF type, whose angular "
                      "data daylit does not read (without it such an aperture is an error)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_in(0.0, 1.0));
   // Sensors come from --grid or from the model: without either the command line is incomplete,
   // a usage error (exit code 2, README "Exit codes"), found when parsing ends.
   CLI::App* app = &command;

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/number_checks.hpp"
 #include "report/progress_bar.hpp"
 
 namespace daylit::cli {
@@ -21,29 +22,30 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                                          "Reflectance of the far ground: directions below the horizon that meet no "
                                          "surface see rho_g E_h / pi (default 0.2, as gensky's ground glow); the model's "
                                          "own ground polygons are surfaces")
-                          ->check(CLI::Range(0.0, 0.999999)));
+                          ->check(number_in(0.0, 0.999999)));
   o.options.push_back(command.add_option("--reflection-tolerance", o.tolerance,
                                          "Target of every sensor's estimated error of ERC + IRC, in percent of the "
                                          "unobstructed horizontal illuminance (DF points; default 0.05): while it is "
                                          "not met and --max-refinements allows, the elements that matter most to the "
                                          "sensors over it are split again")
-                          ->check(CLI::PositiveNumber));
+                          ->check(positive_number()));
   o.options.push_back(command.add_option("--element-size", o.element_size,
                                          "Longest element edge near the sensors and apertures (model units; default: a "
-                                         "fifth of the longest side of the box around a grid's sensors), growing with "
+                                         "fifth of the longest side of the box around a grid's sensors, or of half the "
+                                         "room's span around them where that is longer), growing with "
                                          "the distance farther away; the error estimate compares with elements twice "
                                          "as large")
-                          ->check(CLI::PositiveNumber));
+                          ->check(positive_number()));
   o.options.push_back(command.add_option("--max-refinements", o.max_refinements,
                                          "Further rounds of local refinement while the tolerance is not met "
                                          "(default 2; 0: the first mesh and its uniform split only)")
-                          ->check(CLI::Range(0, 8)));
+                          ->check(number_in(0, 8)));
   o.options.push_back(command.add_option("--element-grading", o.grading,
                                          "How fast elements grow away from the sensors and apertures: an element at "
                                          "distance d from them has edges up to max(element size, grading x d) "
                                          "(default 0.5); smaller values refine the far surfaces too, for convergence "
                                          "studies")
-                          ->check(CLI::Range(0.01, 10.0)));
+                          ->check(number_in(0.01, 10.0)));
   o.options.push_back(command.add_option("--reflection-transport", o.transport,
                                          "reciprocal (default): the transport between elements as collocated at the "
                                          "nodes, made symmetric (reciprocity) with every node's emission accounted for "
@@ -135,7 +137,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
   j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
                {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
                {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
-                                                        : "automatic: a fifth of the longest side of the box around a grid's sensors (the median over the grids)"},
+                                                        : "automatic: a fifth of the longest side of the box around a grid's sensors, or of half the room's span around them where that is longer (the median over the grids)"},
                {"grading", opt.grading},
                {"max_error_percent_by_round", r.error_by_round}};
   j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/number_checks.hpp"
 #include "geometry/error.hpp"
 #include "sky/site.hpp"
 #include "sky/solar_position.hpp"
@@ -145,20 +146,20 @@ std::function<int()> add_sun_command(CLI::App& app) {
       ->check(validator_from(parse_iso8601_time, "ISO8601"));
   sun->add_option("--pressure-hpa", opt->pressure_hpa, "Annual mean local air pressure for refraction, hPa")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 5000.0));
+      ->check(number_in(0.0, 5000.0));
   sun->add_option("--temperature-c", opt->temperature_c, "Annual mean local air temperature for refraction, degrees C")
       ->capture_default_str()
-      ->check(CLI::Range(-273.0, 6000.0));  // −273 itself is refused by solar_position()
+      ->check(number_in(-273.0, 6000.0));  // −273 itself is refused by solar_position()
   opt->delta_t_option =
       sun->add_option("--delta-t-s", opt->delta_t_s,
                       "Delta T = TT - UT1, seconds (default: Espenak and Meeus's polynomial, within 5 s "
                       "in recent years; 5 s moves the sun by 6e-5 degrees)")
-          ->check(CLI::Range(-1e5, 1e5));
+          ->check(number_in(-1e5, 1e5));
   sun->add_option("--delta-ut1-s", opt->delta_ut1_s,
                   "UT1 - UTC, seconds, from IERS Bulletin A (default 0; each second moves the sun 0.004 degrees "
                   "in hour angle)")
       ->capture_default_str()
-      ->check(CLI::Range(-1.0, 1.0));
+      ->check(number_in(-1.0, 1.0));
   return [opt] { return run_sun(*opt); };
 }
 

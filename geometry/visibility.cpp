@@ -202,16 +202,6 @@ struct BvhNode {
   int first = 0, count = 0;   // leaf: range in the ordered piece indices
 };
 
-// Squared distance from p to the box (0 inside): the key of the nearest-first traversal.
-double distance2(const Box& box, const Vec3& p) {
-  double d = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double e = std::max({box.lo[k] - p[k], 0.0, p[k] - box.hi[k]});
-    d += e * e;
-  }
-  return d;
-}
-
 // An occluder polygon as the union of its convex pieces, for the whole-piece cover test
 // (VisibilityEngine::Impl::covers). `testable`: all its pieces lie exactly in the plane of the
 // first (so that central projection from a receiver off that plane is one-to-one on it) and its
@@ -643,7 +633,7 @@ struct VisibilityEngine::Impl {
         continue;
       }
       if (node.left >= 0) {
-        const bool left_first = distance2(nodes[node.left].box, p) <= distance2(nodes[node.right].box, p);
+        const bool left_first = nodes[node.left].box.distance2(p) <= nodes[node.right].box.distance2(p);
         stack[top++] = left_first ? node.right : node.left;
         stack[top++] = left_first ? node.left : node.right;
         continue;
@@ -741,7 +731,7 @@ struct VisibilityEngine::Impl {
     const bool front_to_back = order_of_subtraction == SubtractionOrder::front_to_back;
     if (front_to_back) {
       std::vector<std::pair<double, const ConvexPiece*>> by_distance;
-      for (const ConvexPiece* o : blockers) by_distance.emplace_back(distance2(occluder_boxes[std::size_t(o - occluders.data())], p), o);
+      for (const ConvexPiece* o : blockers) by_distance.emplace_back(occluder_boxes[std::size_t(o - occluders.data())].distance2(p), o);
       std::stable_sort(by_distance.begin(), by_distance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       for (std::size_t i = 0; i < blockers.size(); ++i) blockers[i] = by_distance[i].second;
     }

@@ -12,6 +12,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "geometry/box.hpp"
+#include "geometry/ray_crossing.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "simulation/dense_lu.hpp"
@@ -64,28 +66,6 @@ std::vector<ApertureGroup> group_apertures(const Scene& scene) {
   }
   return groups;
 }
-
-struct Box {
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi = -1.0 * lo;
-  void add(const Vec3& p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  bool empty() const { return !(lo.x <= hi.x); }
-  double longest_side() const { return empty() ? 0 : std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}); }
-  bool meets(const Box& o, double margin) const {
-    return lo.x - margin <= o.hi.x && o.lo.x - margin <= hi.x && lo.y - margin <= o.hi.y &&
-           o.lo.y - margin <= hi.y && lo.z - margin <= o.hi.z && o.lo.z - margin <= hi.z;
-  }
-  double distance(const Vec3& p) const {
-    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
-    const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
-    const double dz = std::max({lo.z - p.z, 0.0, p.z - hi.z});
-    return std::hypot(dx, dy, dz);
-  }
-};
 
 Box box_of(const std::vector<Vec3>& v) {
   Box b;
@@ -786,12 +766,41 @@ RadiositySystem radiosity_system(const Scene& scene, const std::vector<double>& 
   return sys;
 }
 
+namespace {
+
+// The longest chord through p along the three axes between surfaces it crosses both ways (walls
+// and panes alike): the room's length, width or height there; 0 where no axis meets surfaces
+// both ways (a sensor outdoors).
+double room_span(const std::vector<Polygon>& surfaces, const Vec3& p) {
+  double span = 0;
+  for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}) {
+    const double chord = nearest_crossing(surfaces, p, axis) + nearest_crossing(surfaces, p, -1.0 * axis);
+    if (std::isfinite(chord)) span = std::max(span, chord);
+  }
+  return span;
+}
+
+// The median room span over (at most 64 of) a grid's sensors, taken evenly through the list.
+double median_room_span(const std::vector<Polygon>& surfaces, const SensorGrid& g) {
+  const std::size_t n = g.sensors.size(), taken = std::min<std::size_t>(n, 64);
+  std::vector<double> spans;
+  for (std::size_t k = 0; k < taken; ++k) spans.push_back(room_span(surfaces, g.sensors[k * n / taken].position));
+  if (spans.empty()) return 0;
+  std::nth_element(spans.begin(), spans.begin() + std::ptrdiff_t(spans.size() / 2), spans.end());
+  return spans[spans.size() / 2];
+}
+
+}  // namespace
+
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {
+  std::vector<Polygon> surfaces = scene.occluders;
+  for (const Aperture& a : scene.apertures) surfaces.push_back(a.polygon);
   std::vector<double> extents;
   for (const SensorGrid* g : grids) {
     Box b;
     for (const Sensor& s : g->sensors) b.add(s.position);
-    if (b.longest_side() > 0) extents.push_back(b.longest_side());
+    const double extent = std::max(b.longest_side(), 0.5 * median_room_span(surfaces, *g));
+    if (extent > 0) extents.push_back(extent);
   }
   if (extents.empty()) {
     Box b;

@@ -509,6 +509,31 @@ TEST_CASE("reflected components: bad reflectances are refused") {
                     Catch::Contains("ground reflectance"));
 }
 
+TEST_CASE("automatic element size: a fifth of the grid's extent, or of half the room's span where that is longer") {
+  // A 4 × 5 × 3 room (its span through a sensor: 5 along y).
+  const Scene room = box_scene(4, 5, 3);
+  const auto grid = [](std::vector<Vec3> at) {
+    SensorGrid g;
+    for (const Vec3& p : at) g.sensors.push_back({p, {0, 0, 1}});
+    return g;
+  };
+  // A grid over the floor, 4.5 long: its extent rules.
+  const SensorGrid floor = grid({{0.25, 0.25, 0.85}, {3.75, 0.25, 0.85}, {0.25, 4.75, 0.85}, {3.75, 4.75, 0.85}});
+  CHECK(automatic_element_size(room, {&floor}) == Approx(4.5 / 5).epsilon(1e-15));
+  // Two sensors 0.5 apart: half the room's span (5 / 2), not a tenth of a metre.
+  const SensorGrid pair = grid({{1, 1, 0.85}, {1.5, 1, 0.85}});
+  CHECK(automatic_element_size(room, {&pair}) == Approx(2.5 / 5).epsilon(1e-15));
+  // One sensor: the same, where the old rule fell back on the box of apertures and sensors.
+  const SensorGrid one = grid({{2, 2.5, 1}});
+  CHECK(automatic_element_size(room, {&one}) == Approx(2.5 / 5).epsilon(1e-15));
+  // Outdoors (a ground plane only: no axis meets surfaces both ways) the extent alone rules.
+  Scene ground;
+  ground.occluders.push_back(test::polygon({{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}));
+  CHECK(automatic_element_size(ground, {&pair}) == Approx(0.5 / 5).epsilon(1e-15));
+  // Several grids: the median of their sizes.
+  CHECK(automatic_element_size(room, {&floor, &pair, &one}) == Approx(2.5 / 5).epsilon(1e-15));
+}
+
 TEST_CASE("reflected components: a black scene does no radiosity work") {
   const Scene scene = box_scene(1, 1, 1);
   const VisibilityEngine engine(scene, GeometryMode::exact);
