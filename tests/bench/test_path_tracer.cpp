@@ -172,6 +172,32 @@ TEST_CASE("path tracer: a box with an open ceiling (IRC of downward sensors by H
   }
 }
 
+TEST_CASE("path tracer: the open ceiling cut into three apertures of unequal areas gives the same closed forms") {
+  // Next-event estimation draws an aperture by area and a point on it: with several apertures the
+  // density is 1/(their total area) wherever it lands. The ceiling as strips of 1, 1.5 and 2.5 m
+  // (the same opening) must give the one-aperture closed forms; an area summed wrongly for any but
+  // the first (once, by an uninitialised sum: 1/9 instead of 1/5.4 on a two-window room) shows as
+  // an IRC up to 2/3 high, tens of standard errors here.
+  rc::ReflectionCase c = rc::open_ceiling_box_case();
+  const double W = 4, H = 3;
+  c.scene.apertures.clear();
+  double y0 = 0;
+  for (const double width : {1.0, 1.5, 2.5}) {
+    Aperture strip;
+    strip.polygon = rc::rectangle({0, y0, H}, {0, width, 0}, {W, 0, 0}, "void", "strip");  // normal −z
+    c.scene.apertures.push_back(strip);
+    y0 += width;
+  }
+  const auto r = path_trace(c.scene, c.sensors, options(16384, 6, c.sky, c.ground_reflectance, 9));
+  for (std::size_t i = 0; i < c.sensors.size(); ++i) {
+    INFO("sensor " << i << ": SC " << r[i].sc.value << " (exact " << c.sc[i] << "), IRC " << r[i].irc.value << " ± "
+                   << r[i].irc.standard_error << " (exact " << c.irc[i] << ")");
+    CHECK(within(r[i].sc, c.sc[i]));
+    CHECK(within(r[i].irc, c.irc[i]));
+    CHECK(r[i].irc.standard_error <= 0.02 * c.irc[i] + 1e-12);
+  }
+}
+
 TEST_CASE("path tracer: flux balance of a box with a ceiling opening, bounce by bounce") {
   // A 4 × 5 × 3 m box of uniform ρ = 0.5 with a 2 × 2 m opening in the ceiling, under the uniform
   // sky (L = 1). Φ_k: flux arriving on the interior surfaces after k reflections; Λ_k: flux leaving
