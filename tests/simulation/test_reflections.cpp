@@ -714,6 +714,54 @@ TEST_CASE("window room: a tolerance a sixth of the first estimate is planned wit
   CHECK(std::abs(local.balance_mismatch) < 1e-9);
 }
 
+TEST_CASE("two windows of one glass in perpendicular walls: each transmits by the cosine about its own pane, whatever their order") {
+  // A 2 m cube room with a south window (y = 0) and an east window (x = 2), both glazed with
+  // T(μ) = 0.9 μ (steep, so a wrong cosine shows), a reflecting wall 2 m beyond the east window
+  // facing it. Listed south first, the east window's light once took μ about the south pane's
+  // normal: the wall, seen through the east window nearly normally, was weighted as at grazing
+  // incidence. ERC and IRC must not depend on the order the apertures are listed in (they differ
+  // by the rounding of sums taken in another order: 1e-9 is a thousandfold margin over what was
+  // measured, and the old weighting moved ERC by tens of percent).
+  const double w = 2;
+  Scene scene;
+  scene.occluders = {
+      test::polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
+      test::polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
+      test::polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
+      test::polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
+      test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}, {w, 0.5, 0}, {w, 0.5, 0.6}, {w, 1.5, 0.6}, {w, 1.5, 1.6},
+                     {w, 0.5, 1.6}, {w, 0.5, 0.6}, {w, 0.5, 0}},
+                    "east"),
+      test::polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6}, {1.5, 0, 1.6},
+                     {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
+                    "south"),
+      test::polygon({{4, -2, 0}, {4, -2, 4}, {4, 4, 4}, {4, 4, 0}}, "wall opposite")};
+  const std::vector<double> reflectance{0.2, 0.7, 0.5, 0.5, 0.5, 0.5, 0.5};
+  Aperture south{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "south window"), 0.9};
+  Aperture east{test::polygon({{w, 0.5, 0.6}, {w, 1.5, 0.6}, {w, 1.5, 1.6}, {w, 0.5, 1.6}}, "east window"), 0.9};
+  south.angular_transmittance = east.angular_transmittance = {0.0, 0.9};
+  SensorGrid grid;
+  grid.name = "g";
+  grid.sensors = {{{1.0, 1.0, 0.85}, {0, 0, 1}}, {{1.5, 1.0, 1.1}, {1, 0, 0}}, {{1.0, 1.5, 1.1}, {0, -1, 0}}};
+  ReflectionOptions o;
+  o.element_size = 0.5;
+  o.max_refinements = 0;
+  o.ground_reflectance = 0.2;
+  const auto solve = [&](std::vector<Aperture> apertures) {
+    Scene s = scene;
+    s.apertures = std::move(apertures);
+    const VisibilityEngine engine(s, GeometryMode::exact);
+    return reflected_components(s, reflectance, engine, {&grid}, o).grids[0];
+  };
+  const SensorReflections south_first = solve({south, east}), east_first = solve({east, south});
+  for (std::size_t i = 0; i < grid.sensors.size(); ++i) {
+    INFO("sensor " << i << ": ERC " << south_first.erc_percent[i] << " against " << east_first.erc_percent[i]);
+    CHECK(south_first.erc_percent[i] > 0);
+    CHECK(south_first.erc_percent[i] == Approx(east_first.erc_percent[i]).epsilon(1e-9));
+    CHECK(south_first.irc_percent[i] == Approx(east_first.irc_percent[i]).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("window room: an adjacent room's face behind a wall, back to back in its plane, changes nothing") {
   // Honeybee writes an interior wall twice, once per room, as coincident polygons facing away from
   // each other. Here the north wall gets such a twin facing out: its back lies on the wall's front
