@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <string>
 
@@ -372,6 +373,17 @@ class Transport {
       // and the surface (boxes, conservatively: a group that cannot is left out exactly).
       Box reach = surf_boxes_[s];
       reach.add(x);
+      // Pairs of groups whose panes may both lie on one line from x to the surface (an interior
+      // window, then the façade): their directions are seen by neither group's view (each
+      // takes the other's panes as opaque) and are added below by the pair's own.
+      thread_local std::vector<std::pair<std::size_t, std::size_t>> pairs;
+      series_pairs(x, poly, reach, pairs);
+      thread_local std::vector<std::vector<std::array<double, 3>>> raw[N];  // [m][g][i]: E(through g) per element
+      if (!pairs.empty())
+        for (std::size_t m = 0; m < N; ++m) {
+          raw[m].resize(groups_.size());
+          for (auto& r : raw[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
+        }
       for (std::size_t g = 0; g < groups_.size(); ++g) {
         bool may_cross = false;
         for (std::size_t a : groups_[g].apertures) may_cross |= reach.meets(aperture_boxes_[a], 1e-9 * scale_);
@@ -384,7 +396,11 @@ class Transport {
         if (through.empty()) continue;
         const bool through_free = counters.pairs_clipped == clipped_t;
         // Both seen whole: the same region, nothing seen through the group.
-        if (through_free && inside_free && !inside.empty()) continue;
+        if (through_free && inside_free && !inside.empty()) {
+          if (!pairs.empty())
+            for (std::size_t m = 0; m < N; ++m) raw[m][g] = inside_cs[m];
+          continue;
+        }
         const ApertureGroup& group = groups_[g];
         for (std::size_t m = 0; m < N; ++m) {
           const RadiosityMesh& mesh = *meshes[m];
@@ -417,12 +433,95 @@ class Transport {
               }
               spread = t > 0 ? (hi - lo) / t : 0;
             }
+            if (!pairs.empty()) raw[m][g][i] = c;
             for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
             sink(m, elements[i], side, c, true, spread);
           }
         }
       }
+      // Through panes of two groups: with both transparent, what neither alone nor nothing
+      // shows, E(g, h) − E(g) − E(h) + E(none), under T_g·T_h (each at the centroid's direction
+      // about its own pane; the product's spread over the vertices' directions as for one).
+      // Three or more groups on one line are not counted (README, "Known limits").
+      for (const auto& [g, h] : pairs) {
+        const PairView& view = pair_view(g, h);
+        VisibilityOptions pair_opt = opt;
+        pair_opt.excluded_occluder = view_occluder(view.index, surf.occluder);
+        pair_opt.receiver_occluder = view_occluder(view.index, receiver);
+        const std::uint64_t clipped_p = counters.pairs_clipped;
+        const SphericalRegion both = view.engine->visible_region(x, n, s, counters, pair_opt);
+        if (both.empty()) continue;
+        const bool both_free = counters.pairs_clipped == clipped_p;
+        // Seen whole, as inside: the four regions are one, nothing passes both groups.
+        if (both_free && inside_free && !inside.empty()) continue;
+        const ApertureGroup &gg = groups_[g], &gh = groups_[h];
+        const auto product = [&](const Vec3& u) { return gg.at(dot(u, gg.pane_normal)) * gh.at(dot(u, gh.pane_normal)); };
+        for (std::size_t m = 0; m < N; ++m) {
+          const RadiosityMesh& mesh = *meshes[m];
+          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
+          for (std::size_t i = 0; i < elements.size(); ++i) {
+            const RadiosityElement& el = mesh.elements[elements[i]];
+            thread_local SphericalRegion part;
+            element_region(both, both_free, el, x, n, part);
+            if (part.empty()) continue;
+            auto c = element_irradiance_coefficients(part, el, x, n);
+            const double t = product(normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x));
+            double lo = t, hi = t;
+            for (const Vec3& v : el.vertices) {
+              const double tv = product(normalized(v - x));
+              lo = std::min(lo, tv);
+              hi = std::max(hi, tv);
+            }
+            const double spread = t > 0 ? (hi - lo) / t : 0;
+            const std::array<double, 3>& c_in = inside_cs[m][i];
+            for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - raw[m][g][i][k] - raw[m][h][i][k] + c_in[k]);
+            sink(m, elements[i], side, c, true, spread);
+          }
+        }
+      }
     }
+  }
+
+  // The pairs of groups (g < h) with panes a of g and b of h that may both stand between x and
+  // the polygon: each box meets the reach, each plane has x strictly on one side and a vertex of
+  // the polygon strictly on the other, and one pane has a vertex strictly beyond the other's
+  // plane from x (else no line from x crosses both). Conservative: a pair kept here may still
+  // show nothing, which the pair's view finds exactly.
+  void series_pairs(const Vec3& x, const Polygon& poly, const Box& reach,
+                    std::vector<std::pair<std::size_t, std::size_t>>& out) const {
+    out.clear();
+    if (groups_.size() < 2) return;
+    const double margin = kSideMargin * scale_;
+    const auto beyond = [&](std::size_t a, const std::vector<Vec3>& vertices) {
+      const double side_x = dot(pane_normals_[a], x - pane_points_[a]);
+      if (std::abs(side_x) <= margin) return false;
+      for (const Vec3& v : vertices) {
+        const double side_v = dot(pane_normals_[a], v - pane_points_[a]);
+        if (std::abs(side_v) > margin && (side_v > 0) != (side_x > 0)) return true;
+      }
+      return false;
+    };
+    thread_local std::vector<std::vector<std::size_t>> crossing;
+    crossing.assign(groups_.size(), {});
+    std::size_t groups_crossed = 0;
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      for (std::size_t a : groups_[g].apertures)
+        if (reach.meets(aperture_boxes_[a], 1e-9 * scale_) && beyond(a, poly.vertices)) crossing[g].push_back(a);
+      groups_crossed += !crossing[g].empty();
+    }
+    if (groups_crossed < 2) return;
+    for (std::size_t g = 0; g < groups_.size(); ++g)
+      for (std::size_t h = g + 1; h < groups_.size(); ++h) {
+        bool series = false;
+        for (std::size_t a : crossing[g]) {
+          for (std::size_t b : crossing[h]) {
+            series = beyond(a, scene_.apertures[b].polygon.vertices) || beyond(b, scene_.apertures[a].polygon.vertices);
+            if (series) break;
+          }
+          if (series) break;
+        }
+        if (series) out.emplace_back(g, h);
+      }
   }
 
   // The elements flagged split in four at their edges' midpoints; returns refine_mesh's parents.
@@ -549,36 +648,66 @@ class Transport {
   // The surfaces as luminaires (aperture s: surface s), seen past the opaque polygons, which keep
   // their indices in Scene::occluders so that the luminaire's own can be excluded by index:
   // `inside_` also past every aperture (what is seen inside), `through_[g]` past the apertures
-  // of the other groups only, so that through_[g] − inside_ is what is seen through group g.
-  // The cut to the receiver's side of the luminaire's plane is the engine's, exact
-  // (VisibilityOptions::occluders_beyond), so one engine serves every surface and both sides.
+  // of the other groups only, so that through_[g] − inside_ is what is seen through group g, and
+  // a pair's view past the panes of two groups (pair_view). The cut to the receiver's side of the
+  // luminaire's plane is the engine's, exact (VisibilityOptions::occluders_beyond), so one engine
+  // serves every surface and both sides.
   void build_luminaire_engines() {
-    Scene base;
-    for (const RadiositySurface& s : mesh_.surfaces) base.apertures.push_back({polygons_[s.occluder], 1.0});
-    base.occluders = scene_.occluders;
-    Scene inside = base;
+    Scene inside = luminaire_scene();
     for (const Aperture& a : scene_.apertures) inside.occluders.push_back(a.polygon);
     inside_ = std::make_unique<VisibilityEngine>(inside, options_.mode, engine_.order(), AperturesAre::independent);
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-      Scene t = base;
-      std::vector<std::size_t>& index = through_index_.emplace_back(scene_.apertures.size(), VisibilityOptions::kNoOccluder);
-      for (std::size_t h = 0; h < groups_.size(); ++h)
-        if (h != g)
-          for (std::size_t a : groups_[h].apertures) {
-            index[a] = t.occluders.size();
-            t.occluders.push_back(scene_.apertures[a].polygon);
-          }
-      through_.emplace_back(t, options_.mode, engine_.order(), AperturesAre::independent);
+    for (std::size_t g = 0; g < groups_.size(); ++g) through_.push_back(view_engine({g}, through_index_.emplace_back()));
+    const std::size_t n = groups_.size();
+    pair_views_ = std::vector<PairView>(n > 1 ? n * (n - 1) / 2 : 0);
+    for (const Aperture& a : scene_.apertures) {
+      pane_normals_.push_back(normalized(newell_normal(a.polygon.vertices)));
+      pane_points_.push_back(a.polygon.vertices.front());
     }
     remesh_boxes();
   }
 
-  // Occluder `i` of `inside_` and the sky box (a pane: occluders + aperture) as through_[g] lists
-  // it: the opaque polygons keep their index, a pane has another or is none (its group's).
-  std::size_t through_occluder(std::size_t g, std::size_t i) const {
-    const std::size_t n = scene_.occluders.size();
-    return i < n || i == VisibilityOptions::kNoOccluder ? i : through_index_[g][i - n];
+  // The surfaces as luminaires past the opaque polygons: every view's common part.
+  Scene luminaire_scene() const {
+    Scene base;
+    for (const RadiositySurface& s : mesh_.surfaces) base.apertures.push_back({polygons_[s.occluder], 1.0});
+    base.occluders = scene_.occluders;
+    return base;
   }
+
+  // The engine that sees past the panes of the groups `transparent`, the other groups' panes
+  // being occluders; `index`: per aperture, its occluder index there (none where transparent).
+  VisibilityEngine view_engine(const std::vector<std::size_t>& transparent, std::vector<std::size_t>& index) const {
+    Scene t = luminaire_scene();
+    index.assign(scene_.apertures.size(), VisibilityOptions::kNoOccluder);
+    for (std::size_t h = 0; h < groups_.size(); ++h)
+      if (std::find(transparent.begin(), transparent.end(), h) == transparent.end())
+        for (std::size_t a : groups_[h].apertures) {
+          index[a] = t.occluders.size();
+          t.occluders.push_back(scene_.apertures[a].polygon);
+        }
+    return VisibilityEngine(t, options_.mode, engine_.order(), AperturesAre::independent);
+  }
+
+  // The view past the panes of groups g < h, built on first use: most pairs of a model never
+  // have panes on one line (series_pairs), and each view is an engine over the whole scene.
+  struct PairView {
+    std::once_flag built;
+    std::unique_ptr<VisibilityEngine> engine;
+    std::vector<std::size_t> index;
+  };
+  const PairView& pair_view(std::size_t g, std::size_t h) const {
+    PairView& view = pair_views_[h * (h - 1) / 2 + g];
+    std::call_once(view.built, [&] { view.engine = std::make_unique<VisibilityEngine>(view_engine({g, h}, view.index)); });
+    return view;
+  }
+
+  // Occluder `i` of `inside_` and the sky box (a pane: occluders + aperture) as a view's engine
+  // lists it: the opaque polygons keep their index, a pane has another or is none (transparent).
+  std::size_t view_occluder(const std::vector<std::size_t>& index, std::size_t i) const {
+    const std::size_t n = scene_.occluders.size();
+    return i < n || i == VisibilityOptions::kNoOccluder ? i : index[i - n];
+  }
+  std::size_t through_occluder(std::size_t g, std::size_t i) const { return view_occluder(through_index_[g], i); }
 
   void build_sky_box(const Box& all) {
     const double m = 2 * scale_ + 1;
@@ -612,6 +741,8 @@ class Transport {
   std::unique_ptr<VisibilityEngine> inside_;
   std::vector<VisibilityEngine> through_;  // per aperture group
   std::vector<std::vector<std::size_t>> through_index_;  // per group and aperture: its occluder index there
+  mutable std::vector<PairView> pair_views_;              // per pair of groups g < h: at h(h − 1)/2 + g
+  std::vector<Vec3> pane_normals_, pane_points_;          // per aperture: its plane
   std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;
   std::vector<std::array<bool, 2>> live_;  // per surface and side

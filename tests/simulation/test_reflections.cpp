@@ -762,6 +762,51 @@ TEST_CASE("two windows of one glass in perpendicular walls: each transmits by th
   }
 }
 
+TEST_CASE("a pane in series with the window (an interior partition): what lies beyond both passes with both transmittances") {
+  // The 2 m cube room, black inside, its open window (τ 0.8) in the south wall, a reflecting wall
+  // 2 m beyond it facing it, the far ground black: the wall's exitance is the sky's alone. A
+  // sensor at y = 1.5 facing the window sees the wall through it; a partition pane (τ 0.5, not
+  // reflecting) across the whole room at y = 1 puts a second pane on every such line. Its ERC
+  // must then be exactly half (the same regions, found by another engine: 1e-9 for the rounding
+  // of their moments). Each group's view takes the other's panes as opaque, so before the pair
+  // of groups had a view of its own the wall seen through both was lost (ERC 0).
+  const double w = 2;
+  Scene scene;
+  scene.occluders = {
+      test::polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
+      test::polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
+      test::polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
+      test::polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
+      test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}}, "east"),
+      test::polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6}, {1.5, 0, 1.6},
+                     {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
+                    "south"),
+      test::polygon({{-2, -2, 0}, {4, -2, 0}, {4, -2, 4}, {-2, -2, 4}}, "wall beyond")};
+  const std::vector<double> reflectance{0, 0, 0, 0, 0, 0, 0.5};
+  const Aperture window{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 0.8};
+  const Aperture partition{test::polygon({{0, 1, 0}, {0, 1, w}, {w, 1, w}, {w, 1, 0}}, "partition"), 0.5};
+  SensorGrid grid;
+  grid.name = "g";
+  grid.sensors = {{{1.0, 1.5, 1.1}, {0, -1, 0}}, {{0.7, 1.8, 0.9}, normalized(Vec3{0.2, -1, 0.3})}};
+  ReflectionOptions o;
+  o.element_size = 1;
+  o.max_refinements = 0;
+  o.ground_reflectance = 0;
+  const auto solve = [&](std::vector<Aperture> apertures) {
+    Scene s = scene;
+    s.apertures = std::move(apertures);
+    const VisibilityEngine engine(s, GeometryMode::exact);
+    return reflected_components(s, reflectance, engine, {&grid}, o).grids[0];
+  };
+  const SensorReflections window_alone = solve({window}), behind_partition = solve({partition, window});
+  for (std::size_t i = 0; i < grid.sensors.size(); ++i) {
+    INFO("sensor " << i << ": ERC " << behind_partition.erc_percent[i] << " against half of " << window_alone.erc_percent[i]);
+    CHECK(window_alone.erc_percent[i] > 0.1);
+    CHECK(behind_partition.erc_percent[i] == Approx(0.5 * window_alone.erc_percent[i]).epsilon(1e-9));
+    CHECK(behind_partition.irc_percent[i] == 0);
+  }
+}
+
 TEST_CASE("window room: an adjacent room's face behind a wall, back to back in its plane, changes nothing") {
   // Honeybee writes an interior wall twice, once per room, as coincident polygons facing away from
   // each other. Here the north wall gets such a twin facing out: its back lies on the wall's front
