@@ -220,6 +220,7 @@ struct VisibilityEngine::Impl {
   GeometryMode mode;
   SubtractionOrder order_of_subtraction = SubtractionOrder::as_built;
   std::vector<ConvexPiece> occluders;
+  std::size_t occluder_polygons = 0;  // Scene::occluders.size(): a pane's index past them is occluder_polygons + aperture
   std::vector<Box> occluder_boxes;
   std::vector<int> order;  // piece indices in BVH leaf order
   std::vector<BvhNode> nodes;
@@ -519,6 +520,11 @@ struct VisibilityEngine::Impl {
     for (std::size_t i = 0; i < pane_pieces.size(); ++i) {
       const ConvexPiece& q = pane_pieces[i];
       if (q.source == w.source) continue;
+      // The pane the receiver lies on (a radiosity node on a glass partition) is in front of
+      // nothing it sees: to roundoff the receiver is on either side of it, and on the far side
+      // every direction would pass it (measured: the sky through a skylight, seen from the
+      // nodes of a glass partition, counted under the partition's T as well at about half of them).
+      if (options.receiver_occluder == occluder_polygons + q.source) continue;
       // A later pane in w's plane that overlaps it gives w the overlap, and is not in front of it.
       if (among(overlaps_later[w.source], q.source)) continue;
       if (box_outside_any(pane_boxes[i], planes, p)) continue;
@@ -818,6 +824,7 @@ VisibilityEngine::VisibilityEngine(const Scene& scene, GeometryMode mode, Subtra
     : impl_(std::make_unique<Impl>()) {
   impl_->mode = mode;
   impl_->order_of_subtraction = order;
+  impl_->occluder_polygons = scene.occluders.size();
   for (std::size_t s = 0; s < scene.occluders.size(); ++s)
     for (auto& piece : convex_pieces(scene.occluders[s], s)) impl_->occluders.push_back(std::move(piece));
   for (const ConvexPiece& o : impl_->occluders) {

@@ -84,7 +84,9 @@ struct VisibilityOptions {
   // that a surface does not hide itself. kNoOccluder: every occluder blocks.
   static constexpr std::size_t kNoOccluder = std::size_t(-1);
   std::size_t excluded_occluder = kNoOccluder;
-  // The occluder the receiver lies on (kNoOccluder: none), which does not block either. A point
+  // The occluder the receiver lies on (kNoOccluder: none), which does not block either, or, past
+  // the occluders (Scene::occluders.size() + a), aperture a's pane, which filters none of the
+  // other apertures' views (AperturesAre::panes). A point
   // of a polygon computed in floating point lies off its plane by roundoff, on either side: one
   // behind it (measured: two of every three nodes of the office's window jambs, x = 0.8 − 1 ulp)
   // would see its own polygon in front of it, covering the whole hemisphere it faces.

@@ -637,3 +637,38 @@ TEST_CASE("coplanar panes: pieces in one plane overlap when they share area, in 
   CHECK(overlapping_coplanar_panes({{square}, {flat_half, folded_half}}).empty());
   CHECK(overlapping_coplanar_panes({{square}, {flat_half}}).size() == 1);
 }
+
+TEST_CASE("a receiver on a pane (receiver_occluder = occluders + pane) sees the other apertures past none of that pane, on either side of it to roundoff") {
+  // A glass partition x = 0 (aperture 0) and a skylight above (aperture 1); one opaque polygon
+  // so that the pane's index past the occluders is 1 + 0. A radiosity node on the partition lies
+  // off its plane by roundoff, on either side: on the far side (x < 0, facing +x) every direction
+  // it sees crosses the partition at once, and the skylight's view was all `behind` the
+  // partition (its light counted under the partition's transmittance too).
+  Scene scene;
+  scene.occluders.push_back(polygon({{3, -3, 0}, {3, 3, 0}, {3, 3, 3}, {3, -3, 3}}, "wall far away"));
+  scene.apertures.push_back({polygon({{0, -2, 0}, {0, 2, 0}, {0, 2, 2.5}, {0, -2, 2.5}}, "partition"), 0.8});
+  scene.apertures.push_back({polygon({{0.5, -0.5, 3}, {0.5, 0.5, 3}, {1.5, 0.5, 3}, {1.5, -0.5, 3}}, "skylight"), 0.9});
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  const Vec3 n{1, 0, 0};
+  VisibilityOptions own;
+  own.clip_to_horizon = false;
+  own.receiver_occluder = scene.occluders.size() + 0;
+  std::vector<double> seen;
+  for (const double x : {-std::numeric_limits<double>::denorm_min(), 0.0, std::numeric_limits<double>::denorm_min(),
+                         -1e-15, 1e-15}) {
+    VisibilityCounters c;
+    const ApertureView view = engine.aperture_view({x, 0, 1}, n, 1, c, own);
+    INFO("receiver at x = " << x);
+    CHECK(view.behind.empty());
+    CHECK(!view.region.empty());
+    seen.push_back(solid_angle(view.region));
+  }
+  // The same directions from all five points (they differ by 1e-15 m): 1e-12.
+  for (double s : seen) CHECK(s == Approx(seen[0]).epsilon(1e-12));
+  // Without the receiver on it, the partition is in front for a point behind it, and filters.
+  VisibilityCounters c;
+  VisibilityOptions none;
+  none.clip_to_horizon = false;
+  const ApertureView behind = engine.aperture_view({-0.01, 0, 1}, n, 1, c, none);
+  CHECK(!behind.behind.empty());
+}
