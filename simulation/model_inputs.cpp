@@ -7,6 +7,7 @@
 #include "geometry/coplanar_panes.hpp"
 #include "geometry/honeybee_model.hpp"
 #include "geometry/obj_material_map.hpp"
+#include "geometry/ray_crossing.hpp"
 #include "materials/obj_materials.hpp"
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
@@ -24,6 +25,29 @@ bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
       for (const Vec3& v : a.polygon.vertices)
         if (dot(v - s.position, s.normal) > 0) return false;
   return true;
+}
+
+// Sensors that see the sky directly, not through an aperture: a ray from the sensor between its
+// normal and the zenith (along n + z or n + 3z: a façade sensor in a courtyard sees the sky
+// steeply) meets no polygon (occluder or aperture). A sensor outdoors, or
+// in a model open to the sky, is such; daylit counts the sky through apertures only, so the user
+// is told. Tested on at most 4,096 sensors per grid, evenly through it (floating point: an
+// estimate for a notice, never a result). Returns {found, tested}.
+std::pair<std::size_t, std::size_t> open_to_sky(const SensorGrid& grid, const std::vector<Polygon>& surfaces) {
+  const std::size_t n = grid.sensors.size(), tested = std::min<std::size_t>(n, 4096);
+  std::size_t found = 0;
+  for (std::size_t k = 0; k < tested; ++k) {
+    const Sensor& s = grid.sensors[k * n / tested];
+    for (const double zenith : {1.0, 3.0}) {
+      const Vec3 up = s.normal + Vec3{0, 0, zenith};
+      if (dot(up, s.normal) <= 0 || up.z <= 0) continue;  // facing down: no sky above its horizon
+      if (std::isinf(nearest_crossing(surfaces, s.position, normalized(up)))) {
+        ++found;
+        break;
+      }
+    }
+  }
+  return {found, tested};
 }
 
 // The first occluder that lies in an aperture's plane (normals parallel within 1e-9, every
@@ -163,6 +187,19 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
                   (doubled == 1 ? " pair" : " pairs") + " that overlap only in part reflects twice.";
       in.scene.notices.push_back(std::move(notice));
     }
+  }
+  std::vector<Polygon> surfaces = in.scene.occluders;
+  for (const Aperture& a : in.scene.apertures) surfaces.push_back(a.polygon);
+  for (const auto& grid : in.grids) {
+    const auto [open, tested] = open_to_sky(grid, surfaces);
+    if (open > 0)
+      in.scene.notices.push_back(
+          grid.path + ": " + std::to_string(open) + " of " +
+          (tested == grid.sensors.size() ? "the " + std::to_string(tested) : std::to_string(tested) + " tested (of " + std::to_string(grid.sensors.size()) + ")") +
+          " sensors of grid '" + grid.name + "' see the sky directly, not through an aperture (a ray from each, between its "
+          "normal and the zenith, meets no surface): outdoors, or in a model open to the sky. daylit counts the sky "
+          "through apertures only: their sky component leaves out the sky they see directly (the reflected components "
+          "count the surfaces and far ground they see).");
   }
   for (const auto& grid : in.grids)
     if (faces_no_aperture(grid, in.scene))

@@ -78,3 +78,18 @@ if "$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apert
 fi
 grep -q "needs --site" "$work/no-site.err" && [ ! -e "$work/no-site.csv" ]
 echo "city: context counts as expected, exact/rational agree, --context without --site refused"
+
+# Sensors that see the sky directly (outdoors, or in a model open to the sky) get a notice naming
+# how many: daylit's sky component counts the sky through apertures only. The office's grid has
+# none; the same grid with two sensors above the roof and one beside the building facing out has
+# those three (and the sensors facing down, none).
+dir=$samples/office
+"$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$dir/grid.pts" \
+  --out "$work/office-sky.csv" 2> "$work/office-sky.err"
+if grep -q "see the sky directly" "$work/office-sky.err"; then echo "office: sensors said to see the sky directly"; exit 1; fi
+{ head -n 3 "$dir/grid.pts"; echo "5 5 40 0 0 1"; echo "2 3 45 0.6 0 0.8"; echo "-30 5 1 -1 0 0"; echo "5 5 40 0 0 -1"; } > "$work/outdoors.pts"
+"$daylit" df --components sc --scene "$dir/scene.rad" --apertures "$dir/apertures.rad" --grid "$work/outdoors.pts" \
+  --out "$work/outdoors.csv" 2> "$work/outdoors.err"
+grep -q "3 of the 7 sensors of grid 'outdoors' see the sky directly" "$work/outdoors.err" ||
+  { echo "outdoor sensors not noticed:"; cat "$work/outdoors.err"; exit 1; }
+echo "office: no sensor sees the sky directly; three placed outdoors are noticed"
