@@ -2,8 +2,10 @@
 // What the suites of `daylit bench` share (cli/bench_command.cpp registers them): their options, entry
 // points, and the progress line; their one timing scheme is bench/timing.hpp.
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "bench/timing.hpp"
 
@@ -18,6 +20,14 @@ struct BenchOptions {
   // `scenes`: this daylit was built with DAYLIT_MPI (cli/mpi_shards.hpp), so that its MPI table
   // can run it under mpirun.
   bool mpi_build = false;
+  // `trace`: the user's scene and the path tracer's settings (path_tracer.hpp).
+  struct Trace {
+    std::vector<std::string> scene_files, aperture_files, grid_files;
+    long paths = 16384;
+    int bounces = 16;
+    double ground_reflectance = 0.2;
+    std::uint64_t seed = 1;
+  } trace;
 };
 
 // `daylit bench kernels`: the moment kernels exact, by early termination and by Monte Carlo; cost
@@ -42,6 +52,8 @@ int run_bench_reflections(const BenchOptions& options);
 // `daylit bench annual`: the annual sky by the exact path, in exact patches and sampled, against a
 // tight reference run.
 int run_bench_annual(const BenchOptions& options);
+// `daylit bench trace`: the path tracer on the user's scene (SC, ERC, IRC, DF with standard errors).
+int run_bench_trace(const BenchOptions& options);
 
 namespace bench {
 

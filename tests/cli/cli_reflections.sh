@@ -241,5 +241,25 @@ for b, v, a in zip(base, veil, air):
     assert abs(float(a["sc_percent"]) - sc) <= 1e-12 * sc, (b, a)
 PY
 
+# `daylit bench trace`: the path tracer on the same room, df's columns with standard errors; every
+# 10th sensor, 16,384 paths. df's default solution and the trace agree within 5 standard errors
+# plus df's own error estimate at every sensor (the chance that a correct pair fails one of 8 such
+# checks is below 1e-5; the two are independent codes).
+awk 'NR % 10 == 1' "$samples/room/grid.pts" > "$work/tenth.pts"
+"$daylit" df --scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$work/tenth.pts" \
+  --components all --out "$work/tenth.csv" --quiet || fail "df on every 10th sensor"
+"$daylit" bench trace --scene "$samples/room/scene.rad" --apertures "$samples/room/apertures.rad" --grid "$work/tenth.pts" \
+  --paths 16384 --out "$work/trace" --quiet || fail "bench trace"
+python3 - "$work/tenth.csv" "$work/trace/trace.csv" <<'PY' || fail "bench trace against df --components all"
+import csv, sys
+d, t = (list(csv.DictReader(open(f))) for f in sys.argv[1:])
+assert len(d) == len(t) == 8
+for a, b in zip(d, t):
+    assert [a[k] for k in ("grid", "index", "x", "y")] == [b[k] for k in ("grid", "index", "x", "y")], (a, b)
+    for k in ("sc", "erc", "irc", "df"):
+        allowance = 5 * float(b[k + "_se"]) + (float(a["reflection_error_estimate_percent"]) if k != "sc" else 0) + 1e-9
+        assert abs(float(a[k + "_percent"]) - float(b[k + "_percent"])) <= allowance, (k, a, b)
+PY
+
 [ "$failures" -eq 0 ] && echo "room: columns, sums, summary and bad input as expected"
 exit "$failures"
