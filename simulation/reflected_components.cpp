@@ -102,6 +102,24 @@ ApertureView above_horizon_view(const VisibilityEngine& engine, const Vec3& x, c
   return engine.aperture_view(x, n, a, c, options);
 }
 
+// An element seen from x through panes of transmittance T(u) along direction u: T taken at the
+// centroid's direction, and its spread over the vertices' directions relative to it, which
+// bounds the error of that (for T monotone over the element, as Fresnel's is).
+struct ElementTransmittance {
+  double value = 1, spread = 0;
+};
+template <class T>
+ElementTransmittance element_transmittance(const RadiosityElement& el, const Vec3& x, const T& transmittance) {
+  const double t = transmittance(normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x));
+  double lo = t, hi = t;
+  for (const Vec3& v : el.vertices) {
+    const double tv = transmittance(normalized(v - x));
+    lo = std::min(lo, tv);
+    hi = std::max(hi, tv);
+  }
+  return {t, t > 0 ? (hi - lo) / t : 0};
+}
+
 // ---- The transport model ----------------------------------------------------------------------
 class Transport {
  public:
@@ -419,20 +437,11 @@ class Transport {
                 !inside_free || inside.empty()
                     ? inside_cs[m][i]
                     : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
-            double t = group.transmittance, spread = 0;
-            if (!group.angular.empty()) {
-              // T(μ) taken at the centroid's direction; its spread over the vertices' directions
-              // bounds (for T monotone in μ over the element, as Fresnel's is) the error of that.
-              const Vec3 cen = normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x);
-              t = group.at(dot(cen, group.pane_normal));
-              double lo = t, hi = t;
-              for (const Vec3& v : el.vertices) {
-                const double tv = group.at(dot(normalized(v - x), group.pane_normal));
-                lo = std::min(lo, tv);
-                hi = std::max(hi, tv);
-              }
-              spread = t > 0 ? (hi - lo) / t : 0;
-            }
+            const ElementTransmittance ts =
+                group.angular.empty()
+                    ? ElementTransmittance{group.transmittance, 0}
+                    : element_transmittance(el, x, [&](const Vec3& u) { return group.at(dot(u, group.pane_normal)); });
+            const double t = ts.value, spread = ts.spread;
             if (!pairs.empty()) raw[m][g][i] = c;
             for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
             sink(m, elements[i], side, c, true, spread);
@@ -465,14 +474,7 @@ class Transport {
             element_region(both, both_free, el, x, n, part);
             if (part.empty()) continue;
             auto c = element_irradiance_coefficients(part, el, x, n);
-            const double t = product(normalized(el.point(1.0 / 3, 1.0 / 3, 1.0 / 3) - x));
-            double lo = t, hi = t;
-            for (const Vec3& v : el.vertices) {
-              const double tv = product(normalized(v - x));
-              lo = std::min(lo, tv);
-              hi = std::max(hi, tv);
-            }
-            const double spread = t > 0 ? (hi - lo) / t : 0;
+            const auto [t, spread] = element_transmittance(el, x, product);
             const std::array<double, 3>& c_in = inside_cs[m][i];
             for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - raw[m][g][i][k] - raw[m][h][i][k] + c_in[k]);
             sink(m, elements[i], side, c, true, spread);

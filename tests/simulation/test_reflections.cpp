@@ -714,6 +714,30 @@ TEST_CASE("window room: a tolerance a sixth of the first estimate is planned wit
   CHECK(std::abs(local.balance_mismatch) < 1e-9);
 }
 
+namespace {
+
+// A 2 m cube room (x, y, z in [0, 2]): floor, ceiling, north, west, east and south walls, a
+// 1 × 1 m hole in the south wall (x 0.5..1.5, z 0.6..1.6) and, where asked, the same in the east
+// wall (y 0.5..1.5), each hole cut by a seam.
+std::vector<Polygon> cube_room(bool east_window) {
+  const double w = 2;
+  const Polygon east =
+      east_window ? test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}, {w, 0.5, 0}, {w, 0.5, 0.6}, {w, 1.5, 0.6},
+                                   {w, 1.5, 1.6}, {w, 0.5, 1.6}, {w, 0.5, 0.6}, {w, 0.5, 0}},
+                                  "east")
+                  : test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}}, "east");
+  return {test::polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
+          test::polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
+          test::polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
+          test::polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
+          east,
+          test::polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6}, {1.5, 0, 1.6},
+                         {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
+                        "south")};
+}
+
+}  // namespace
+
 TEST_CASE("two windows of one glass in perpendicular walls: each transmits by the cosine about its own pane, whatever their order") {
   // A 2 m cube room with a south window (y = 0) and an east window (x = 2), both glazed with
   // T(μ) = 0.9 μ (steep, so a wrong cosine shows), a reflecting wall 2 m beyond the east window
@@ -724,18 +748,8 @@ TEST_CASE("two windows of one glass in perpendicular walls: each transmits by th
   // measured, and the old weighting moved ERC by tens of percent).
   const double w = 2;
   Scene scene;
-  scene.occluders = {
-      test::polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
-      test::polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
-      test::polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
-      test::polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
-      test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}, {w, 0.5, 0}, {w, 0.5, 0.6}, {w, 1.5, 0.6}, {w, 1.5, 1.6},
-                     {w, 0.5, 1.6}, {w, 0.5, 0.6}, {w, 0.5, 0}},
-                    "east"),
-      test::polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6}, {1.5, 0, 1.6},
-                     {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
-                    "south"),
-      test::polygon({{4, -2, 0}, {4, -2, 4}, {4, 4, 4}, {4, 4, 0}}, "wall opposite")};
+  scene.occluders = cube_room(true);
+  scene.occluders.push_back(test::polygon({{4, -2, 0}, {4, -2, 4}, {4, 4, 4}, {4, 4, 0}}, "wall opposite"));
   const std::vector<double> reflectance{0.2, 0.7, 0.5, 0.5, 0.5, 0.5, 0.5};
   Aperture south{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "south window"), 0.9};
   Aperture east{test::polygon({{w, 0.5, 0.6}, {w, 1.5, 0.6}, {w, 1.5, 1.6}, {w, 0.5, 1.6}}, "east window"), 0.9};
@@ -772,16 +786,8 @@ TEST_CASE("a pane in series with the window (an interior partition): what lies b
   // of groups had a view of its own the wall seen through both was lost (ERC 0).
   const double w = 2;
   Scene scene;
-  scene.occluders = {
-      test::polygon({{0, 0, 0}, {w, 0, 0}, {w, w, 0}, {0, w, 0}}, "floor"),
-      test::polygon({{0, 0, w}, {0, w, w}, {w, w, w}, {w, 0, w}}, "ceiling"),
-      test::polygon({{0, w, 0}, {w, w, 0}, {w, w, w}, {0, w, w}}, "north"),
-      test::polygon({{0, 0, 0}, {0, w, 0}, {0, w, w}, {0, 0, w}}, "west"),
-      test::polygon({{w, 0, 0}, {w, 0, w}, {w, w, w}, {w, w, 0}}, "east"),
-      test::polygon({{0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0}, {0.5, 0, 0}, {0.5, 0, 0.6}, {1.5, 0, 0.6}, {1.5, 0, 1.6},
-                     {0.5, 0, 1.6}, {0.5, 0, 0.6}, {0.5, 0, 0}},
-                    "south"),
-      test::polygon({{-2, -2, 0}, {4, -2, 0}, {4, -2, 4}, {-2, -2, 4}}, "wall beyond")};
+  scene.occluders = cube_room(false);
+  scene.occluders.push_back(test::polygon({{-2, -2, 0}, {4, -2, 0}, {4, -2, 4}, {-2, -2, 4}}, "wall beyond"));
   const std::vector<double> reflectance{0, 0, 0, 0, 0, 0, 0.5};
   const Aperture window{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 0.8};
   const Aperture partition{test::polygon({{0, 1, 0}, {0, 1, w}, {w, 1, w}, {w, 1, 0}}, "partition"), 0.5};
