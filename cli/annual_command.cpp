@@ -85,6 +85,13 @@ int run_annual(AnnualCommandOptions opt) {
   // The sun moves over the year: context buildings are kept or left out by their angular size
   // alone (no sun beam), and the summary states the bound for the sky.
   ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
+  // Annual daylight coefficients are per window group (blinds act on them); the sky and sun seen
+  // past every surface are not in them yet (df and illuminance count them).
+  for (const SensorGrid& grid : model.grids)
+    if (grid.sees_sky_directly)
+      model.scene.notices.push_back(grid.path + ": annual runs count the sky, the sun and the far ground through the "
+                                    "apertures only: what grid '" + grid.name + "' sees directly, past every surface, "
+                                    "is left out of its annual results (df and illuminance count it)");
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
   // Under mpirun every rank computes the whole AnnualSky (the Perez sky of every hour: a few

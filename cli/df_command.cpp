@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
@@ -28,6 +29,7 @@
 #include "report/reports.hpp"
 #include "report/staged_output.hpp"
 #include "geometry/error.hpp"
+#include "geometry/sky_box.hpp"
 #include "geometry/visibility.hpp"
 #include "simulation/daylight_criteria.hpp"
 #include "simulation/sky_component.hpp"
@@ -76,7 +78,9 @@ int run_df(DfOptions opt) {
     notice_unused_reflection_options(opt.reflections, opt.quiet, scene);
   }
 
-  const VisibilityEngine engine(scene, mode, opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built);
+  const SubtractionOrder order = opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built;
+  const VisibilityEngine engine(scene, mode, order);
+  const std::unique_ptr<VisibilityEngine> direct = direct_sky_engine(scene, grids, mode, order);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
 
   std::vector<GridReport> reports;
@@ -93,7 +97,7 @@ int run_df(DfOptions opt) {
     const SensorGrid& block = mpi::rank_block(grid, storage);
     ProgressBar bar("df " + grid.name, block.sensors.size(), show_progress);
     const bool gradient = opt.gradient || opt.refine;
-    SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient);
+    SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient, direct.get());
     shards.push_back({grid.name, grid.sensors.size(), {seconds_since(tg)}});
     if (mpi::several()) {  // one rank: the values are the grid's already (no copies of millions)
       sc.sc_percent = mpi::gather(sc.sc_percent, grid.sensors.size());
@@ -112,7 +116,7 @@ int run_df(DfOptions opt) {
     r.counters = sc.counters;
     r.pane_bound_percent = sc.pane_bound_percent;
     if (opt.refine)
-      r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters);
+      r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters, direct.get());
     r.run_time_s = seconds_since(tg);
     reports.push_back(std::move(r));
   }

@@ -22,6 +22,7 @@ SensorGrid sub_grid(const SensorGrid& grid, SensorBlock b) {
   part.name = grid.name;
   part.path = grid.path;
   part.first = grid.first + b.begin;
+  part.sees_sky_directly = grid.sees_sky_directly;
   part.sensors.assign(grid.sensors.begin() + std::ptrdiff_t(b.begin), grid.sensors.begin() + std::ptrdiff_t(b.end));
   return part;
 }

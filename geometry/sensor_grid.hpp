@@ -21,6 +21,11 @@ struct SensorGrid {
   // The index of sensors[0] in the grid read from `path`: 0, or where an MPI rank computes a
   // block of it, the block's start (what a result that must not depend on the blocks keys on).
   std::size_t first = 0;
+  // Whether sensors of the grid see the sky directly, not through an aperture (outdoors, on a
+  // façade, in a courtyard or a model open to the sky): set where the model is read (a ray test,
+  // simulation/model_inputs.cpp); such a grid's sensors also count what they see past every
+  // surface (geometry/sky_box.hpp), exactly. Other grids leave that work out.
+  bool sees_sky_directly = false;
 };
 
 // Blank lines and '#' comments are allowed; anything else that is not six finite numbers with a

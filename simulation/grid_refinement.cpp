@@ -159,7 +159,7 @@ std::vector<double> cell_mean_errors(const std::vector<SensorCell>& cells, const
 
 GridRefinement refine_grid(const VisibilityEngine& engine, const Scene& scene, SkyModel sky, const SensorGrid& grid,
                            const std::vector<double>& df_percent, const std::vector<Vec3>& gradient, double tolerance,
-                           VisibilityCounters& counters) {
+                           VisibilityCounters& counters, const VisibilityEngine* direct) {
   GridRefinement out;
   out.tolerance = tolerance;
   const std::vector<SensorCell> cells = infer_cells(grid);
@@ -169,6 +169,7 @@ GridRefinement refine_grid(const VisibilityEngine& engine, const Scene& scene, S
   SensorGrid children;
   children.name = grid.name;
   children.path = grid.path;
+  children.sees_sky_directly = grid.sees_sky_directly;
   for (std::size_t i = 0; i < count; ++i) {
     const SensorCell& c = cells[i];
     const double a = c.width * c.width;
@@ -197,7 +198,7 @@ GridRefinement refine_grid(const VisibilityEngine& engine, const Scene& scene, S
   out.cell_area.resize(count + children.sensors.size(), 0.0);
   for (std::size_t i = 0; i < count; ++i) out.cell_area[i] = cells[i].width * cells[i].width;
   if (!children.sensors.empty()) {
-    const SkyComponentResult r = sky_component(engine, scene, children, sky, {}, true);
+    const SkyComponentResult r = sky_component(engine, scene, children, sky, {}, true, direct);
     counters += r.counters;
     out.added = children.sensors;
     out.added_df = r.sc_percent;

@@ -57,9 +57,10 @@ struct GridRefinement {
 };
 
 // One round of refinement of `grid`, whose DF % and gradients are given; the children are computed
-// with sky_component_with_gradient (exact, like their parents).
+// with sky_component_with_gradient (exact, like their parents; with the sky seen directly through
+// `direct` where the grid sees it: sky_component).
 GridRefinement refine_grid(const VisibilityEngine& engine, const Scene& scene, SkyModel sky, const SensorGrid& grid,
                            const std::vector<double>& df_percent, const std::vector<Vec3>& gradient, double tolerance,
-                           VisibilityCounters& counters);
+                           VisibilityCounters& counters, const VisibilityEngine* direct = nullptr);
 
 }  // namespace daylit

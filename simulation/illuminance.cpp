@@ -119,7 +119,8 @@ double sun_through(const DaylightConditions& c, const Aperture& aperture, const 
 }
 
 SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
-                                     const DaylightConditions& c, VisibilityCounters& counters) {
+                                     const DaylightConditions& c, VisibilityCounters& counters,
+                                     const VisibilityEngine* direct) {
   SensorIlluminance out;
   for (std::size_t a = 0; a < engine.aperture_count(); ++a) {
     const ApertureView view = engine.aperture_view(sensor.position, sensor.normal, a, counters);
@@ -140,6 +141,16 @@ SensorIlluminance sensor_illuminance(const VisibilityEngine& engine, const Scene
         out.regions_by_quadrature += part.regions_by_quadrature;
         if (disk > 0) out.sun += term.sign * transmittance_along(scene, term.aperture, term.panes, c.sun) * disk;
       }
+    }
+  }
+  // The sky and sun seen directly, past every surface (geometry/sky_box.hpp), unfiltered.
+  if (direct) {
+    const Aperture open{Polygon{}, 1.0};
+    for (std::size_t f = 0; f < direct->aperture_count(); ++f) {
+      const SphericalRegion region = direct->visible_region(sensor.position, sensor.normal, f, counters);
+      if (region.empty()) continue;
+      add_sky(c, open, region, sensor.normal, out);
+      if (c.has_sun()) out.sun += sun_disk(c, region, sensor.normal);
     }
   }
   out.sky *= c.zenith_luminance;
@@ -182,7 +193,9 @@ double unobstructed_sky_irradiance(const DaylightConditions& c) {
 }
 
 IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                              const DaylightConditions& conditions, const ProgressCallback& progress) {
+                              const DaylightConditions& conditions, const ProgressCallback& progress,
+                              const VisibilityEngine* direct) {
+  if (!grid.sees_sky_directly) direct = nullptr;
   if (conditions.sky == DaylightConditions::Sky::cie_general &&
       (!conditions.cie || (conditions.method == DaylightConditions::Method::fit && !conditions.fit)))
     throw Error("a CIE general sky needs its type and sun (and its fit for the fit method)");
@@ -198,7 +211,7 @@ IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene
     std::size_t regions_by_quadrature = 0;
   };
   const auto locals = for_each_sensor<Local>(count, 16, progress, [&](std::size_t i, Local& local) {
-    const SensorIlluminance s = sensor_illuminance(engine, scene, grid.sensors[i], conditions, local.counters);
+    const SensorIlluminance s = sensor_illuminance(engine, scene, grid.sensors[i], conditions, local.counters, direct);
     result.sky_lux[i] = s.sky;
     result.sun_lux[i] = s.sun;
     result.sky_error_lux[i] = s.sky_error;

@@ -79,7 +79,10 @@ struct IlluminanceResult {
 // which have no closed form here. The sun through glass takes T at the sun's centre: over a disk
 // of radius ρ = 4.65 mrad the cosine of incidence changes by at most ρ, and T by at most
 // ρ·max|T'| (the summary states it).
+// `direct`: the sky box's engine (geometry/sky_box.hpp); where the grid sees the sky directly
+// (SensorGrid::sees_sky_directly), the sky and sun seen past every surface are added, exactly.
 IlluminanceResult illuminance(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                              const DaylightConditions& conditions, const ProgressCallback& progress = {});
+                              const DaylightConditions& conditions, const ProgressCallback& progress = {},
+                              const VisibilityEngine* direct = nullptr);
 
 }  // namespace daylit

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "geometry/coplanar_panes.hpp"
 #include "geometry/honeybee_model.hpp"
@@ -27,21 +28,44 @@ bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
   return true;
 }
 
-// Sensors that see the sky directly, not through an aperture: a ray from the sensor between its
-// normal and the zenith (along n + z or n + 3z: a façade sensor in a courtyard sees the sky
-// steeply) meets no polygon (occluder or aperture). A sensor outdoors, or
-// in a model open to the sky, is such; daylit counts the sky through apertures only, so the user
-// is told. Tested on at most 4,096 sensors per grid, evenly through it (floating point: an
-// estimate for a notice, never a result). Returns {found, tested}.
+// Sensors that see the sky directly, not through an aperture: a ray from the sensor, into its
+// hemisphere and above the horizon, meets no polygon (occluder or aperture). Tried first along
+// n + z and n + 3z (a façade sensor in a courtyard sees the sky steeply), then along 17 fixed
+// directions (the zenith; 8 azimuths at about 45° and 8 at about 10° elevation: past a balcony, a
+// canopy or a deep reveal), stopping at the first that escapes. A ray may slip between two
+// polygons through their shared edge (a room's corner seen at 45° from a sensor on a 0.1 m grid):
+// so the fixed directions are off the round angles, and a ray counts only where a second one,
+// turned by 1e-3 rad, escapes too (an opening narrower than that is not found). Tested on at
+// most 4,096 sensors per grid, evenly through it (floating point: it decides which grids get the
+// exact direct view, never a result). Returns {found, tested}.
 std::pair<std::size_t, std::size_t> open_to_sky(const SensorGrid& grid, const std::vector<Polygon>& surfaces) {
+  static const std::vector<Vec3> fixed = [] {
+    std::vector<Vec3> d{normalized(Vec3{0.0123, 0.0171, 1})};
+    for (const double elevation : {44.3, 10.7})
+      for (int k = 0; k < 8; ++k) {
+        const double e = elevation * std::numbers::pi / 180, a = (k + 0.137) * std::numbers::pi / 4;
+        d.push_back({std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)});
+      }
+    return d;
+  }();
+  // The ray starts a hair (1e-7 of the coordinates' size) off the sensor: a sensor lying on a
+  // polygon (a table top) is not hidden by it, as in the exact engine.
+  const auto escapes = [&](const Vec3& sensor, const Vec3& direction) {
+    const double size = std::max({1.0, std::abs(sensor.x), std::abs(sensor.y), std::abs(sensor.z)});
+    const Vec3 origin = sensor + 1e-7 * size * direction;
+    const Vec3 side = normalized(std::abs(direction.z) < 0.9 ? cross(direction, Vec3{0, 0, 1}) : cross(direction, Vec3{1, 0, 0}));
+    return std::isinf(nearest_crossing(surfaces, origin, direction)) &&
+           std::isinf(nearest_crossing(surfaces, origin, normalized(direction + 1e-3 * side + 1e-3 * cross(direction, side))));
+  };
   const std::size_t n = grid.sensors.size(), tested = std::min<std::size_t>(n, 4096);
   std::size_t found = 0;
   for (std::size_t k = 0; k < tested; ++k) {
     const Sensor& s = grid.sensors[k * n / tested];
-    for (const double zenith : {1.0, 3.0}) {
-      const Vec3 up = s.normal + Vec3{0, 0, zenith};
-      if (dot(up, s.normal) <= 0 || up.z <= 0) continue;  // facing down: no sky above its horizon
-      if (std::isinf(nearest_crossing(surfaces, s.position, normalized(up)))) {
+    std::vector<Vec3> rays{s.normal + Vec3{0, 0, 1}, s.normal + Vec3{0, 0, 3}};
+    rays.insert(rays.end(), fixed.begin(), fixed.end());
+    for (const Vec3& up : rays) {
+      if (dot(up, s.normal) <= 1e-3 * norm(up) * norm(s.normal) || up.z <= 1e-3 * norm(up)) continue;  // below its or the sky's horizon
+      if (escapes(s.position, normalized(up))) {
         ++found;
         break;
       }
@@ -190,19 +214,20 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   }
   std::vector<Polygon> surfaces = in.scene.occluders;
   for (const Aperture& a : in.scene.apertures) surfaces.push_back(a.polygon);
-  for (const auto& grid : in.grids) {
+  for (auto& grid : in.grids) {
     const auto [open, tested] = open_to_sky(grid, surfaces);
+    grid.sees_sky_directly = open > 0;
     if (open > 0)
       in.scene.notices.push_back(
           grid.path + ": " + std::to_string(open) + " of " +
           (tested == grid.sensors.size() ? "the " + std::to_string(tested) : std::to_string(tested) + " tested (of " + std::to_string(grid.sensors.size()) + ")") +
-          " sensors of grid '" + grid.name + "' see the sky directly, not through an aperture (a ray from each, between its "
-          "normal and the zenith, meets no surface): outdoors, or in a model open to the sky. daylit counts the sky "
-          "through apertures only: their sky component leaves out the sky they see directly (the reflected components "
-          "count the surfaces and far ground they see).");
+          " sensors of grid '" + grid.name + "' see the sky directly, not through an aperture (a ray from each into "
+          "the sky meets no surface): outdoors, on a facade or in a model open to the sky. For this grid the sky "
+          "and far ground seen past every surface are counted, exactly, besides what comes through the apertures "
+          "(it costs a visibility query per face of a box around the model, per sensor).");
   }
   for (const auto& grid : in.grids)
-    if (faces_no_aperture(grid, in.scene))
+    if (!grid.sees_sky_directly && faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "
                                  "(each aperture lies behind each sensor's plane): its sky components are 0 (only reflected light can reach it). A grid on a "
                                  "facade facing out, or reversed directions?");

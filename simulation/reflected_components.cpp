@@ -14,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include "geometry/box.hpp"
+#include "geometry/sky_box.hpp"
 #include "geometry/ray_crossing.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
@@ -240,10 +241,14 @@ class Transport {
   }
 
   // The sky and far ground seen directly (not through an aperture): the six inward faces of the
-  // box around the model as apertures, every opaque and aperture polygon as an occluder.
-  double direct(const Vec3& x, const Vec3& n, std::size_t own, VisibilityCounters& c, bool& empty) const {
-    double e = 0;
-    empty = true;
+  // box around the model as apertures, every opaque and aperture polygon as an occluder
+  // (geometry/sky_box.hpp). `total`: both; `ground`: the far ground's part; `empty`: nothing seen.
+  struct Direct {
+    double total = 0, ground = 0;
+    bool empty = true;
+  };
+  Direct direct(const Vec3& x, const Vec3& n, std::size_t own, VisibilityCounters& c) const {
+    Direct out;
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.receiver_occluder = half.receiver_occluder = own;  // the box's occluders start with the scene's
@@ -252,12 +257,16 @@ class Transport {
       // receiver inside a closed room), the second query is left out, exactly.
       const SphericalRegion all = sky_box_->visible_region(x, n, f, c, full);
       if (all.empty()) continue;
-      empty = false;
+      out.empty = false;
       const SphericalRegion above = above_horizon(*sky_box_, x, n, f, c, half);
-      if (!above.empty()) e += options_.light ? options_.light(above, n, nullptr) : sky_irradiance(above, n, options_.sky);
-      if (ground_luminance_ > 0) e += ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
+      if (!above.empty()) out.total += options_.light ? options_.light(above, n, nullptr) : sky_irradiance(above, n, options_.sky);
+      if (ground_luminance_ > 0) {
+        const double ground = ground_luminance_ * (lambert(all, n) - (above.empty() ? 0.0 : lambert(above, n)));
+        out.total += ground;
+        out.ground += ground;
+      }
     }
-    return e;
+    return out;
   }
 
   // What (x, n) sees of the sky and far ground, view by view: through each aperture, then directly
@@ -712,24 +721,8 @@ class Transport {
   std::size_t through_occluder(std::size_t g, std::size_t i) const { return view_occluder(through_index_[g], i); }
 
   void build_sky_box(const Box& all) {
-    const double m = 2 * scale_ + 1;
-    const Vec3 lo = all.lo - Vec3{m, m, m}, hi = all.hi + Vec3{m, m, m};
-    Scene box;
-    for (const Polygon& p : scene_.occluders) box.occluders.push_back(p);
-    for (const Aperture& a : scene_.apertures) box.occluders.push_back(a.polygon);
-    const auto face = [&](std::vector<Vec3> v) {
-      Polygon p;
-      p.vertices = std::move(v);
-      p.name = "sky box";
-      box.apertures.push_back({p, 1.0});
-    };
-    face({{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z}});
-    face({{lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z}});
-    face({{lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, lo.y, lo.z}});
-    face({{lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}});
-    face({{lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {lo.x, lo.y, hi.z}});
-    face({{hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z}});
-    sky_box_ = std::make_unique<VisibilityEngine>(box, options_.mode, engine_.order(), AperturesAre::independent);
+    sky_box_ = std::make_unique<VisibilityEngine>(sky_box_scene(scene_, all), options_.mode, engine_.order(),
+                                                  AperturesAre::independent);
   }
 
   const Scene& scene_;
@@ -771,7 +764,9 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
   ReceiverRow r;
   const std::size_t own = t.mesh().surfaces[own_surface].occluder;
   const auto a = t.through_apertures(x, n, own, true, counters);
-  r.first_bounce = a.sky + a.ground + t.direct(x, n, own, counters, r.direct_empty);
+  const auto d = t.direct(x, n, own, counters);
+  r.first_bounce = a.sky + a.ground + d.total;
+  r.direct_empty = d.empty;
   t.transport(t.mesh(), x, n, own_surface, counters,
               [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) { add_coefficients(r.row, e, side, c); });
   return r;
@@ -1099,7 +1094,8 @@ struct SensorCache {
   std::atomic<std::size_t> bytes{0};
   std::atomic<bool> overflowed{false};
   std::vector<std::vector<std::vector<SensorEntry>>> entries;  // per grid, per sensor
-  std::vector<std::vector<double>> ground;                     // per grid, per sensor: far ground through apertures
+  std::vector<std::vector<double>> ground;                     // per grid, per sensor: the far ground
+  std::vector<std::vector<char>> outdoors;                     // per grid, per sensor: sees the sky directly
 };
 
 // `parent`: per element of the finer mesh (t's), the coarser element it is or came from; `split`:
@@ -1120,9 +1116,11 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
   if (keep && !read) {
     cache->entries.assign(grids.size(), {});
     cache->ground.assign(grids.size(), {});
+    cache->outdoors.assign(grids.size(), {});
     for (std::size_t g = 0; g < grids.size(); ++g) {
       cache->entries[g].resize(grids[g]->sensors.size());
       cache->ground[g].resize(grids[g]->sensors.size());
+      cache->outdoors[g].resize(grids[g]->sensors.size());
     }
   }
   SensorValues out;
@@ -1142,6 +1140,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       local.inside.assign(nc, 0.0);
       local.spread.assign(nc, 0.0);
       double e_through = 0, e_inside = 0, e_spread = 0;
+      bool outdoors = false;  // sees the sky directly: all it sees is outside light (ERC)
       std::vector<SensorEntry> next;
       const auto coarse_sink = [&](std::size_t e, int side, const std::array<double, 3>& c, bool through) {
         if (!split[e]) return;
@@ -1163,6 +1162,7 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       if (read) {
         // The round before's entries, then the new elements alone (on the surfaces that have them).
         e_through = cache->ground[g][i];
+        outdoors = cache->outdoors[g][i];
         for (const SensorEntry& en : cache->entries[g][i]) {
           if (split[en.element])
             coarse_sink(en.element, en.side, en.c, en.through);
@@ -1178,7 +1178,17 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       } else {
         const auto a = t.through_apertures(s.position, s.normal, VisibilityOptions::kNoOccluder, false, local.counters);
         e_through = a.ground;
-        if (keep) cache->ground[g][i] = a.ground;
+        // A grid that sees the sky directly (SensorGrid::sees_sky_directly): the far ground seen
+        // past every surface too.
+        if (grid->sees_sky_directly) {
+          const auto d = t.direct(s.position, s.normal, VisibilityOptions::kNoOccluder, local.counters);
+          e_through += d.ground;
+          outdoors = !d.empty;
+        }
+        if (keep) {
+          cache->ground[g][i] = e_through;
+          cache->outdoors[g][i] = outdoors;
+        }
         // Both meshes from one set of visibility queries.
         const RadiosityMesh* meshes[] = {&coarse_mesh, &t.mesh()};
         t.transport(meshes, s.position, s.normal, std::size_t(-1), local.counters,
@@ -1218,6 +1228,12 @@ SensorValues sensor_values(const Transport& t, const RadiosityMesh& coarse_mesh,
       // sensors that see no exterior surface) is 0, which is nearer the truth; a larger negative
       // value is kept, visible, as the sign of a defect.
       const auto non_negative = [&](double v) { return v < 0 && -v <= estimate[i] ? 0.0 : v; };
+      // A sensor outdoors (on a façade, in a courtyard) sees no room: every surface it sees without
+      // crossing an aperture is outside, its light externally reflected.
+      if (outdoors) {
+        e_through += e_inside;
+        e_inside = 0;
+      }
       erc[i] = non_negative(e_through);
       irc[i] = non_negative(e_inside);
     });

@@ -56,7 +56,7 @@ double pane_term_sky_irradiance(const Scene& scene, const Sensor& sensor, SkyMod
 
 
 SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
-                                              SkyModel sky, VisibilityCounters& counters) {
+                                              SkyModel sky, VisibilityCounters& counters, const VisibilityEngine* direct) {
   VisibilityOptions options;
   options.edge_sources = true;
   double irradiance = 0;
@@ -102,6 +102,13 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
       for (const PaneTerm& term : pane_terms(scene, a, behind))
         add(behind.region, term.transmittance.combined, term.sign, &term);
   }
+  if (direct) {
+    const Aperture open{Polygon{}, 1.0};
+    for (std::size_t f = 0; f < direct->aperture_count(); ++f) {
+      const SphericalRegion region = direct->visible_region(sensor.position, sensor.normal, f, counters, options);
+      if (!region.empty()) add(region, open);
+    }
+  }
   // The same expression as sky_component_percent's, so that the two agree to the last bit.
   const double e_out = unobstructed_horizontal_irradiance(sky);
   const SkyComponentPoint point{100 * irradiance / e_out, (100 / e_out) * gradient};
@@ -110,7 +117,7 @@ SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, co
 }
 
 double sky_component_percent(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor, SkyModel sky,
-                             VisibilityCounters& counters, double* pane_bound_percent) {
+                             VisibilityCounters& counters, double* pane_bound_percent, const VisibilityEngine* direct) {
   const auto through = [&](const SphericalRegion& region, const Aperture& aperture) {
     if (aperture.angular_transmittance.empty()) return aperture.transmittance * sky_irradiance(region, sensor.normal, sky);
     return sky_irradiance_through_glazing(region, sensor.normal, sky, normalized(newell_normal(aperture.polygon.vertices)),
@@ -125,6 +132,11 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
         irradiance += term.sign * pane_term_sky_irradiance(scene, sensor, sky, behind.region, term,
                                                        through(behind.region, term.transmittance.combined), bound);
   }
+  if (direct)
+    for (std::size_t f = 0; f < direct->aperture_count(); ++f) {
+      const SphericalRegion region = direct->visible_region(sensor.position, sensor.normal, f, counters);
+      if (!region.empty()) irradiance += sky_irradiance(region, sensor.normal, sky);
+    }
   const double e_out = unobstructed_horizontal_irradiance(sky);
   const double percent = 100 * irradiance / e_out;
   if (!std::isfinite(percent)) throw non_finite(sensor);
@@ -133,8 +145,10 @@ double sky_component_percent(const VisibilityEngine& engine, const Scene& scene,
 }
 
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                                 SkyModel sky, const ProgressCallback& progress, bool gradient) {
+                                 SkyModel sky, const ProgressCallback& progress, bool gradient,
+                                 const VisibilityEngine* direct) {
   SkyComponentResult result;
+  if (!grid.sees_sky_directly) direct = nullptr;
   const std::size_t count = grid.sensors.size();
   result.sc_percent.assign(count, 0.0);
   if (gradient) result.sc_gradient.assign(count, Vec3{});
@@ -144,12 +158,12 @@ SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& sc
   };
   const auto counters = for_each_sensor<Local>(count, 64, progress, [&](std::size_t i, Local& local) {
     if (gradient) {
-      const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local.counters);
+      const SkyComponentPoint point = sky_component_with_gradient(engine, scene, grid.sensors[i], sky, local.counters, direct);
       result.sc_percent[i] = point.percent;
       result.sc_gradient[i] = point.gradient;
     } else {
       double bound = 0;
-      result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local.counters, &bound);
+      result.sc_percent[i] = sky_component_percent(engine, scene, grid.sensors[i], sky, local.counters, &bound, direct);
       local.pane_bound_percent = std::max(local.pane_bound_percent, bound);
     }
   });

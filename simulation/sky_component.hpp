@@ -32,15 +32,21 @@ using ProgressCallback = std::function<void(std::size_t done)>;
 // integrated with it: sky_irradiance_through_glazing). Runs in parallel over sensors (oneTBB,
 // as many threads as the caller's arena allows); every sensor is computed independently, so results do not depend on the thread count.
 // With `gradient`, also ∇_p SC at every sensor (sky_component_with_gradient).
+// `direct`: the sky box's engine (geometry/sky_box.hpp: direct_sky_engine); where the grid sees the
+// sky directly (SensorGrid::sees_sky_directly), SC also counts the sky seen past every surface and
+// pane, exactly (a façade, a courtyard, a sensor outdoors). nullptr, or another grid: apertures only.
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
-                                 SkyModel sky, const ProgressCallback& progress = {}, bool gradient = false);
+                                 SkyModel sky, const ProgressCallback& progress = {}, bool gradient = false,
+                                 const VisibilityEngine* direct = nullptr);
 
 // Where panes lie in front of an aperture (VisibilityEngine::aperture_view), the sky seen through
 // them too is counted with all their transmittances (pane_transmittance.hpp).
 // The same for one sensor (no threading): the sky component in percent, and in `pane_bound_percent`
-// the bound of SkyComponentResult::pane_bound_percent at this sensor.
+// the bound of SkyComponentResult::pane_bound_percent at this sensor. `direct` (not nullptr): the
+// sky seen directly as well, through its faces.
 double sky_component_percent(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor, SkyModel sky,
-                             VisibilityCounters& counters, double* pane_bound_percent = nullptr);
+                             VisibilityCounters& counters, double* pane_bound_percent = nullptr,
+                             const VisibilityEngine* direct = nullptr);
 
 // The sky irradiance a PaneTerm gives over its region, before its sign, from the closed form
 // `closed` of its combined aperture; what it may be off by is added to `bound`. A glass pane not
@@ -65,7 +71,10 @@ struct SkyComponentPoint {
   double percent = 0;
   Vec3 gradient{};
 };
+// `direct` as for sky_component_percent: the edges its faces share with each other cancel, so the
+// gradient of the sky seen directly comes from the surfaces' edges alone.
 SkyComponentPoint sky_component_with_gradient(const VisibilityEngine& engine, const Scene& scene, const Sensor& sensor,
-                                              SkyModel sky, VisibilityCounters& counters);
+                                              SkyModel sky, VisibilityCounters& counters,
+                                              const VisibilityEngine* direct = nullptr);
 
 }  // namespace daylit

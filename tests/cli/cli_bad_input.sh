@@ -107,7 +107,12 @@ fi
 if [ "$(cut -d, -f2- repeats.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL repeated vertices change the result"; failures=$((failures + 1)); fi
 printf 'void plastic black 0 0 5 0 0 0 0 0\nblack polygon table 0 0 12 0 0.5 0.85  2 0.5 0.85  2 3 0.85  0 3 0.85\n' > table.rad
 "$daylit" df --components sc --scene table.rad --apertures window.rad --grid grid.pts --out table.csv --quiet
-if [ "$(cut -d, -f2- table.csv)" != "$(cut -d, -f2- plain.csv)" ]; then echo "FAIL sensor on a table top"; failures=$((failures + 1)); fi
+# The sensor stands in the open beside the window: it sees the whole sky directly (SC 100 %), past
+# the box around the model, which the table enlarges: the same regions in other pieces, so equal
+# to roundoff (1e-12), not bit for bit.
+if ! paste -d, table.csv plain.csv | awk -F, 'NR > 1 { d = $9 - $19; if (d < 0) d = -d; if (d > 1e-12 * $19 || $19 != $19 || $9 < 99.9999999999) bad = 1 } END { exit bad }'; then
+  echo "FAIL sensor on a table top"; failures=$((failures + 1))
+fi
 echo "ok   repeated vertices and sensors on occluders"
 
 # Millions of lines. Memory must stay proportional to the sensors (the grid is streamed, not

@@ -24,8 +24,8 @@ printf '2 2 0.8 0 0 1\n' > one.pts
 if [ $? -ne 0 ] || [ "$(wc -l < one.csv)" -ne 2 ] || ! grep -q "sensor grids are left out: --grid was given" stderr.txt; then
   echo "FAIL df --model --grid"; failures=$((failures + 1))
 fi
-# A grid whose sensors all face away from every aperture (up, above the roof) is said so.
-printf '2 2 100 0 0 1\n3 2 100 0 0 1\n' > down.pts
+# A grid whose sensors all face away from every aperture (down, below the floor) is said so.
+printf '2 2 -1 0 0 -1\n3 2 -1 0 0 -1\n' > down.pts
 "$daylit" df --components sc --model "$data/model_radiance_grid_views.hbjson" --grid down.pts --out down.csv 2> stderr.txt
 if ! grep -q "every sensor of grid 'down' faces away from every aperture" stderr.txt; then echo "FAIL no notice for a grid facing away"; failures=$((failures + 1)); fi
 # A closed box whose only glass is a partition inside it (as a Honeybee folder files a window
