@@ -38,7 +38,7 @@ bool faces_no_aperture(const SensorGrid& grid, const Scene& scene) {
 // turned by 1e-3 rad, escapes too (an opening narrower than that is not found). Tested on at
 // most 4,096 sensors per grid, evenly through it (floating point: it decides which grids get the
 // exact direct view, never a result). Returns {found, tested}.
-std::pair<std::size_t, std::size_t> open_to_sky(const SensorGrid& grid, const std::vector<Polygon>& surfaces) {
+std::pair<std::size_t, std::size_t> open_to_sky(const SensorGrid& grid, RayBlockers& surfaces) {
   static const std::vector<Vec3> fixed = [] {
     std::vector<Vec3> d{normalized(Vec3{0.0123, 0.0171, 1})};
     for (const double elevation : {44.3, 10.7})
@@ -54,8 +54,8 @@ std::pair<std::size_t, std::size_t> open_to_sky(const SensorGrid& grid, const st
     const double size = std::max({1.0, std::abs(sensor.x), std::abs(sensor.y), std::abs(sensor.z)});
     const Vec3 origin = sensor + 1e-7 * size * direction;
     const Vec3 side = normalized(std::abs(direction.z) < 0.9 ? cross(direction, Vec3{0, 0, 1}) : cross(direction, Vec3{1, 0, 0}));
-    return std::isinf(nearest_crossing(surfaces, origin, direction)) &&
-           std::isinf(nearest_crossing(surfaces, origin, normalized(direction + 1e-3 * side + 1e-3 * cross(direction, side))));
+    return !surfaces.blocked(origin, direction) &&
+           !surfaces.blocked(origin, normalized(direction + 1e-3 * side + 1e-3 * cross(direction, side)));
   };
   const std::size_t n = grid.sensors.size(), tested = std::min<std::size_t>(n, 4096);
   std::size_t found = 0;
@@ -146,11 +146,6 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
     throw Error(files.model + ": no face is an aperture: give the windows' materials or groups the role aperture or "
                 "glass in --obj-materials (or list their groups in its aperture_groups), or make their .mtl materials "
                 "transparent (d < 1); --apertures files add openings too");
-  if (in.scene.apertures.size() == in.scene.interior_apertures)
-    throw Error("no apertures open to the sky" +
-                (in.scene.interior_apertures ? " (" + std::to_string(in.scene.interior_apertures) + " interior windows between rooms)"
-                                             : std::string()) +
-                ": give sky openings with --apertures, glass polygons in the scene, or a --model with apertures");
   for (const auto& f : files.grid_files) in.grids.push_back(read_sensor_grid(f));
   if (in.grids.empty())
     throw Error(files.model.empty() ? "no sensor grids: give --grid (or --model with sensor grids)"
@@ -214,8 +209,9 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
   }
   std::vector<Polygon> surfaces = in.scene.occluders;
   for (const Aperture& a : in.scene.apertures) surfaces.push_back(a.polygon);
+  RayBlockers blockers(surfaces);
   for (auto& grid : in.grids) {
-    const auto [open, tested] = open_to_sky(grid, surfaces);
+    const auto [open, tested] = open_to_sky(grid, blockers);
     grid.sees_sky_directly = open > 0;
     if (open > 0)
       in.scene.notices.push_back(
@@ -226,6 +222,14 @@ ModelInputs load_model(const ModelFiles& files, SkyModel sky, const std::optiona
           "and far ground seen past every surface are counted, exactly, besides what comes through the apertures "
           "(it costs a visibility query per face of a box around the model, per sensor).");
   }
+  // Without an aperture open to the sky only a grid that sees the sky directly gets any (a street
+  // of buildings without windows, for the sky seen on façades and the ground).
+  const bool any_open = std::any_of(in.grids.begin(), in.grids.end(), [](const SensorGrid& g) { return g.sees_sky_directly; });
+  if (in.scene.apertures.size() == in.scene.interior_apertures && !any_open)
+    throw Error("no apertures open to the sky" +
+                (in.scene.interior_apertures ? " (" + std::to_string(in.scene.interior_apertures) + " interior windows between rooms)"
+                                             : std::string()) +
+                ": give sky openings with --apertures, glass polygons in the scene, or a --model with apertures");
   for (const auto& grid : in.grids)
     if (!grid.sees_sky_directly && faces_no_aperture(grid, in.scene))
       in.scene.notices.push_back(grid.path + ": every sensor of grid '" + grid.name + "' faces away from every aperture "

@@ -509,6 +509,12 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
     model_max = {std::max(model_max.x, p.x), std::max(model_max.y, p.y), std::max(model_max.z, p.z)};
   };
   double min_sensor_z = inf;
+  // The lowest sensor of the grids that see the sky directly (SensorGrid::sees_sky_directly):
+  // for them a building is hidden only below it (rules (a)-(c) reason about apertures).
+  double direct_floor_z = inf;
+  for (const auto& grid : grids)
+    if (grid.sees_sky_directly)
+      for (const auto& s : grid.sensors) direct_floor_z = std::min(direct_floor_z, s.position.z);
   for (const auto& grid : grids)
     for (const auto& s : grid.sensors) grow(s.position), min_sensor_z = std::min(min_sensor_z, s.position.z);
   std::vector<ApertureView> apertures;
@@ -567,7 +573,7 @@ ContextPlacement place_context_buildings(const ContextBuildings& context, const 
     // 2. Near the model: placed.
     const bool near = b.box_min.x <= model_max.x && model_min.x <= b.box_max.x && b.box_min.y <= model_max.y &&
                       model_min.y <= b.box_max.y && b.box_min.z <= model_max.z && model_min.z <= b.box_max.z;
-    bool hidden = !near && !apertures.empty();
+    bool hidden = !near && !apertures.empty() && !(b.top_z > direct_floor_z);
     bool all_below = true, any_small = false, in_sun_beam = false;
     double building_solid_angle = 0;
     if (hidden) {

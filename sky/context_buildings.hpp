@@ -121,7 +121,9 @@ struct SunBeam {
 // aperture is in the scene and before the VisibilityEngine is built. For each building:
 // 1. Its prism holds a sensor or an aperture vertex: it is the model's own building (OpenStreetMap
 //    exports have it) and is left out, with a notice.
-// 2. Its box meets the box of the sensors and aperture vertices: placed. Otherwise no segment from
+// 2. Its box meets the box of the sensors and aperture vertices, or its top is above the lowest
+//    sensor of a grid that sees the sky directly (SensorGrid::sees_sky_directly: such a sensor
+//    sees it without any aperture): placed. Otherwise no segment from
 //    a sensor to an aperture point touches it, so any line of sight reaches it beyond an aperture
 //    point q, where it rises no lower than q and than the sensor, and moves away from the sensor's
 //    side of the aperture's plane. For each aperture, the building is hidden from it when

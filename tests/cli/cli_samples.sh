@@ -106,3 +106,22 @@ assert sc[6] == 0 and 0 < sc[4] < 100, sc
 assert sc[:3] == indoors, (sc[:3], indoors)
 PY
 echo "office: no sensor sees the sky directly; three placed outdoors are noticed and see the whole sky"
+
+# Without any aperture a grid that sees the sky directly still gets it (a street of windowless
+# buildings): facing away from the one wall, the unobstructed vertical sky component; facing it,
+# less. A grid that sees no sky at all is still refused for want of apertures.
+printf 'void plastic w 0 0 5 .4 .4 .4 0 0\nw polygon b 0 0 12  0 10 0  20 10 0  20 10 8  0 10 8\n' > "$work/street.rad"
+printf '10 0 1.5 0 -1 0\n10 0 1.5 0 1 0\n' > "$work/street.pts"
+"$daylit" df --components sc --scene "$work/street.rad" --grid "$work/street.pts" --out "$work/street.csv" --quiet
+python3 - "$work/street.csv" <<'PY'
+import csv, math, sys
+sc = [float(r["sc_percent"]) for r in csv.DictReader(open(sys.argv[1]))]
+vsc = 100 * (3 * math.pi + 8) / (14 * math.pi)
+assert abs(sc[0] - vsc) < 1e-9 * vsc and 0 < sc[1] < vsc - 1, sc
+PY
+printf '10 5 1.5 0 0 -1\n' > "$work/down.pts"
+if "$daylit" df --components sc --scene "$work/street.rad" --grid "$work/down.pts" --out "$work/down.csv" 2> "$work/down.err" ||
+   ! grep -q "no apertures open to the sky" "$work/down.err" || [ -e "$work/down.csv" ]; then
+  echo "street: a grid seeing no sky, without apertures, not refused"; exit 1
+fi
+echo "street without apertures: the sky seen directly on a facade, closed form to roundoff"

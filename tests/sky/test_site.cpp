@@ -473,6 +473,19 @@ TEST_CASE("context culling leaves out what cannot be seen and bounds what is too
   for (std::size_t i = 0; i < b.size(); ++i) CHECK(std::abs(b[i] - c[i]) <= 1e-12 * c[i]);
 
   CHECK_THROWS_WITH(place_context_buildings(context, {grid}, SkyModel::cie_overcast, -1, all), Contains("angular size"));
+
+  // A grid that sees the sky directly (outdoors) sees buildings without any aperture: every
+  // building above its lowest sensor is placed, behind the window or small as it may be; the
+  // one below the horizon stays out (and the one holding the model).
+  SensorGrid outdoors = grid;
+  outdoors.sees_sky_directly = true;
+  Scene open = window_scene();
+  const ContextPlacement o = place_context_buildings(context, {outdoors}, SkyModel::cie_overcast, 0.1, open);
+  CHECK(o.placed == 4);
+  CHECK(o.behind_apertures == 0);
+  CHECK(o.too_small == 0);
+  CHECK(o.below_horizon == 1);
+  CHECK(o.enclosing_model == 1);
 }
 
 TEST_CASE("with the sun on, a small building in the sun's beam is kept and one outside it is left out, changing nothing of the sun") {
