@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
@@ -24,6 +25,7 @@
 #include "cli/number_checks.hpp"
 #include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
+#include "geometry/sky_box.hpp"
 #include "materials/surface_reflectance.hpp"
 #include "report/annual_reports.hpp"
 #include "report/model_reports.hpp"
@@ -85,13 +87,14 @@ int run_annual(AnnualCommandOptions opt) {
   // The sun moves over the year: context buildings are kept or left out by their angular size
   // alone (no sun beam), and the summary states the bound for the sky.
   ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
-  // Annual daylight coefficients are per window group (blinds act on them); the sky and sun seen
-  // past every surface are not in them yet (df and illuminance count them).
-  for (const SensorGrid& grid : model.grids)
-    if (grid.sees_sky_directly)
-      model.scene.notices.push_back(grid.path + ": annual runs count the sky, the sun and the far ground through the "
-                                    "apertures only: what grid '" + grid.name + "' sees directly, past every surface, "
-                                    "is left out of its annual results (df and illuminance count it)");
+  // The reflected part's operator has a channel per window group and one for light from surfaces
+  // lit outdoors; the far ground a sensor sees directly has none yet.
+  if (opt.reflections.all())
+    for (const SensorGrid& grid : model.grids)
+      if (grid.sees_sky_directly)
+        model.scene.notices.push_back(grid.path + ": the far ground that grid '" + grid.name + "' sees directly, past "
+                                      "every surface, is left out of its annual reflected part (the sky and sun it "
+                                      "sees directly are counted; df and illuminance count that ground too)");
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
   // Under mpirun every rank computes the whole AnnualSky (the Perez sky of every hour: a few
@@ -112,6 +115,7 @@ int run_annual(AnnualCommandOptions opt) {
   daylight_hours = en17037_daylight_hours(altitude);
 
   const VisibilityEngine engine(model.scene, mode);
+  const std::unique_ptr<DirectSky> direct = direct_sky(model.scene, model.grids, mode, SubtractionOrder::front_to_back);
   const WindowGroups groups = window_groups(model.scene);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
   // ---- Reflected components (annual_reflections.hpp): one operator over all grids, on the asked
@@ -176,7 +180,7 @@ int run_annual(AnnualCommandOptions opt) {
     AnnualGridReport g;
     g.grid = &grid;
     g.result = annual_grid(engine, model.scene, block, sky, opt.annual, [&](std::size_t done) { bar.update(done); },
-                           reflected ? &*reflected : nullptr, whole_grid);
+                           reflected ? &*reflected : nullptr, whole_grid, direct.get());
     const auto tc = std::chrono::steady_clock::now();
     shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(tc - tg).count()}});
     if (mpi::several()) {

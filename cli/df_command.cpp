@@ -80,7 +80,8 @@ int run_df(DfOptions opt) {
 
   const SubtractionOrder order = opt.order == "front-to-back" ? SubtractionOrder::front_to_back : SubtractionOrder::as_built;
   const VisibilityEngine engine(scene, mode, order);
-  const std::unique_ptr<VisibilityEngine> direct = direct_sky_engine(scene, grids, mode, order);
+  const std::unique_ptr<DirectSky> direct = direct_sky(scene, grids, mode, order);
+  const VisibilityEngine* direct_engine = direct ? &direct->engine : nullptr;
   const bool show_progress = !opt.quiet && stderr_is_terminal();
 
   std::vector<GridReport> reports;
@@ -97,7 +98,7 @@ int run_df(DfOptions opt) {
     const SensorGrid& block = mpi::rank_block(grid, storage);
     ProgressBar bar("df " + grid.name, block.sensors.size(), show_progress);
     const bool gradient = opt.gradient || opt.refine;
-    SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient, direct.get());
+    SkyComponentResult sc = sky_component(engine, scene, block, sky, [&](std::size_t done) { bar.update(done); }, gradient, direct_engine);
     shards.push_back({grid.name, grid.sensors.size(), {seconds_since(tg)}});
     if (mpi::several()) {  // one rank: the values are the grid's already (no copies of millions)
       sc.sc_percent = mpi::gather(sc.sc_percent, grid.sensors.size());
@@ -116,7 +117,7 @@ int run_df(DfOptions opt) {
     r.counters = sc.counters;
     r.pane_bound_percent = sc.pane_bound_percent;
     if (opt.refine)
-      r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters, direct.get());
+      r.refinement = refine_grid(engine, scene, sky, grid, r.df_percent, r.df_gradient, opt.refine_tolerance, r.counters, direct_engine);
     r.run_time_s = seconds_since(tg);
     reports.push_back(std::move(r));
   }

@@ -307,8 +307,7 @@ int run_illuminance(IlluminanceOptions opt) {
   }
 
   const VisibilityEngine engine(model.scene, mode);
-  const std::unique_ptr<VisibilityEngine> direct =
-      direct_sky_engine(model.scene, model.grids, mode, SubtractionOrder::front_to_back);
+  const std::unique_ptr<DirectSky> direct = direct_sky(model.scene, model.grids, mode, SubtractionOrder::front_to_back);
   const bool show_progress = !opt.quiet && stderr_is_terminal();
   std::vector<GridLux> grids;
   const std::vector<std::string> hosts = mpi::hosts();
@@ -322,7 +321,7 @@ int run_illuminance(IlluminanceOptions opt) {
     SensorGrid storage;
     const SensorGrid& block = mpi::rank_block(grid, storage);
     ProgressBar bar("illuminance " + grid.name, block.sensors.size(), show_progress);
-    GridLux g{&grid, illuminance(engine, model.scene, block, c, [&](std::size_t done) { bar.update(done); }, direct.get()), {}, {}, 0, {}, {}, {}};
+    GridLux g{&grid, illuminance(engine, model.scene, block, c, [&](std::size_t done) { bar.update(done); }, direct ? &direct->engine : nullptr), {}, {}, 0, {}, {}, {}};
     shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(std::chrono::steady_clock::now() - tg).count()}});
     g.result.sky_lux = mpi::gather(g.result.sky_lux, grid.sensors.size());
     g.result.sun_lux = mpi::gather(g.result.sun_lux, grid.sensors.size());

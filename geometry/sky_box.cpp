@@ -42,8 +42,11 @@ Scene sky_box_scene(const Scene& scene, Box around) {
   return box;
 }
 
-std::unique_ptr<VisibilityEngine> direct_sky_engine(const Scene& scene, const std::vector<SensorGrid>& grids,
-                                                    GeometryMode mode, SubtractionOrder order) {
+DirectSky::DirectSky(const Scene& model, const Box& around, GeometryMode mode, SubtractionOrder order)
+    : scene(sky_box_scene(model, around)), engine(scene, mode, order, AperturesAre::independent) {}
+
+std::unique_ptr<DirectSky> direct_sky(const Scene& scene, const std::vector<SensorGrid>& grids, GeometryMode mode,
+                                      SubtractionOrder order) {
   bool any = false;
   Box around;
   for (const SensorGrid& g : grids) {
@@ -51,7 +54,7 @@ std::unique_ptr<VisibilityEngine> direct_sky_engine(const Scene& scene, const st
     for (const Sensor& s : g.sensors) around.add(s.position);
   }
   if (!any) return nullptr;
-  return std::make_unique<VisibilityEngine>(sky_box_scene(scene, around), mode, order, AperturesAre::independent);
+  return std::make_unique<DirectSky>(scene, around, mode, order);
 }
 
 }  // namespace daylit

@@ -24,10 +24,17 @@ namespace daylit {
 // and every vertex of the scene, so that every receiver is well inside it.
 Scene sky_box_scene(const Scene& scene, Box around);
 
-// The engine over sky_box_scene around every sensor of `grids` (its apertures independent), for
-// the grids that see the sky directly (SensorGrid::sees_sky_directly); nullptr where none does,
-// so that a model seen only through its apertures builds nothing.
-std::unique_ptr<VisibilityEngine> direct_sky_engine(const Scene& scene, const std::vector<SensorGrid>& grids,
-                                                    GeometryMode mode, SubtractionOrder order);
+// The box's scene and its engine (apertures independent) around every sensor of `grids`, for the
+// grids that see the sky directly (SensorGrid::sees_sky_directly). The engine's regions are
+// indexed by the scene's apertures, the box's faces (open: transmittance 1).
+struct DirectSky {
+  DirectSky(const Scene& model, const Box& around, GeometryMode mode, SubtractionOrder order);
+  const Scene scene;
+  const VisibilityEngine engine;
+};
+// nullptr where no grid sees the sky directly, so that a model seen only through its apertures
+// builds nothing.
+std::unique_ptr<DirectSky> direct_sky(const Scene& scene, const std::vector<SensorGrid>& grids, GeometryMode mode,
+                                      SubtractionOrder order);
 
 }  // namespace daylit

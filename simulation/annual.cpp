@@ -325,7 +325,7 @@ double reflected_share(const std::vector<double>& occupied_lux, const std::vecto
 
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                              const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress,
-                             const ReflectedHours* reflected, const BlindsCounts& whole_grid) {
+                             const ReflectedHours* reflected, const BlindsCounts& whole_grid, const DirectSky* direct) {
   const auto t0 = std::chrono::steady_clock::now();
   const WindowGroups groups = window_groups(scene);
   AnnualGridResult r;
@@ -335,6 +335,14 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
   const std::vector<SensorCoefficients> coefficients =
       annual_coefficients(engine, scene, grid, groups, options.degree, r.counters);
   for (const auto& c : coefficients) r.max_moment_error = std::max(r.max_moment_error, c.moment_error);
+  // The sky seen directly: one more part per sensor, the box's open faces its apertures (one group).
+  const bool sees_directly = direct != nullptr && grid.sees_sky_directly;
+  std::vector<SensorCoefficients> direct_coefficients;
+  if (sees_directly) {
+    direct_coefficients = annual_coefficients(direct->engine, direct->scene, grid, window_groups(direct->scene),
+                                              options.degree, r.counters);
+    for (const auto& c : direct_coefficients) r.max_moment_error = std::max(r.max_moment_error, c.moment_error);
+  }
   const auto t1 = std::chrono::steady_clock::now();
   r.coefficient_time_s = std::chrono::duration<double>(t1 - t0).count();
 
@@ -365,6 +373,17 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
       r.direct_sun[i * hours + h] = total;
     }
   }
+  // The sun seen directly: in each hour's direct sun, not in the blinds rule (no blinds outdoors).
+  if (sees_directly)
+    for_each_sensor<int>(n, 16, {}, [&](std::size_t i, int&) {
+      for (std::size_t h = 0; h < hours; ++h) {
+        const AnnualHour& hour = sky.hours[h];
+        if (!hour.sky || hour.direct_normal_lux <= 0) continue;
+        for (const SeenRegion& seen : direct_coefficients[i].regions)
+          r.direct_sun[i * hours + h] +=
+              float(direct_sun_lux(direct->scene, seen, grid.sensors[i].normal, hour.sun, hour.direct_normal_lux));
+      }
+    });
   std::uint64_t sensors_total = n;
   if (whole_grid) whole_grid(lit, sensors_total);
   if (lit.size() != hours * ng) throw Error("the blinds counts do not match the grid's hours and window groups");
@@ -423,10 +442,32 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
           add_patch_coefficients(sky.patches, seen.region, s.normal, seen.transmitting(scene), patch_dc[g], patch_spread[g],
                                  seen.sign);
       }
+    // The sky seen directly, its rule or patch coefficients as a group's.
+    CircumsolarRule direct_rule;
+    std::vector<double> direct_patch_dc;
+    double direct_patch_spread = 0;
+    if (sees_directly) {
+      if (patches) {
+        direct_patch_dc.assign(sky.patches.size(), 0.0);
+        for (const SeenRegion& seen : direct_coefficients[i].regions)
+          add_patch_coefficients(sky.patches, seen.region, s.normal, seen.transmitting(direct->scene), direct_patch_dc,
+                                 direct_patch_spread, seen.sign);
+      } else {
+        direct_rule = circumsolar_rule(direct->scene, s, direct_coefficients[i]);
+      }
+    }
     for (std::size_t h = 0; h < hours; ++h) {
       const AnnualHour& hour = sky.hours[h];
       if (!hour.sky) continue;
       double total = 0, bound = 0;
+      if (sees_directly) {
+        const HourIlluminance e =
+            patches ? patch_hour_illuminance(direct->scene, s, direct_coefficients[i], direct_patch_dc, direct_patch_spread, hour)
+                    : hour_illuminance(direct->scene, s, direct_coefficients[i], hour, options, &direct_rule);
+        adaptive += e.adaptive;
+        total += e.sky_lux + e.sun_lux;
+        bound += e.bound_lux;
+      }
       for (std::size_t g = 0; g < ng; ++g) {
         const SensorCoefficients& part = parts[g];
         const HourIlluminance e = patches ? patch_hour_illuminance(scene, s, part, patch_dc[g], patch_spread[g], hour)

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/sky_box.hpp"
 #include "simulation/annual_coefficients.hpp"
 #include "simulation/sky_patches.hpp"
 #include "sky/circumsolar_sum.hpp"
@@ -152,9 +153,14 @@ struct ReflectedHours;
 // to the sky and sun with each group's blinds factor; the light on surfaces lit outdoors enters by
 // every group, weighted by the groups' aperture areas (exact with one group). nullptr: sky + sun
 // direct only. `whole_grid`: see BlindsCounts (empty: `grid` is the whole grid).
+// `direct` (geometry/sky_box.hpp), where the grid sees the sky directly
+// (SensorGrid::sees_sky_directly): the sky and sun seen past every surface, one more part per
+// sensor (its regions indexed by direct->scene's apertures, the box's open faces), in the exact or
+// the patch path as the groups are, never behind blinds; its sun counts in direct_sun.
 AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,
                              const AnnualSky& sky, const AnnualOptions& options, const ProgressCallback& progress = {},
-                             const ReflectedHours* reflected = nullptr, const BlindsCounts& whole_grid = {});
+                             const ReflectedHours* reflected = nullptr, const BlindsCounts& whole_grid = {},
+                             const DirectSky* direct = nullptr);
 
 // One sensor's sky illuminance in one hour through the given coefficients (all groups, no blinds),
 // and the bound on its error: the path annual_grid takes, for tests.

@@ -32,7 +32,7 @@ using ProgressCallback = std::function<void(std::size_t done)>;
 // integrated with it: sky_irradiance_through_glazing). Runs in parallel over sensors (oneTBB,
 // as many threads as the caller's arena allows); every sensor is computed independently, so results do not depend on the thread count.
 // With `gradient`, also ∇_p SC at every sensor (sky_component_with_gradient).
-// `direct`: the sky box's engine (geometry/sky_box.hpp: direct_sky_engine); where the grid sees the
+// `direct`: the sky box's engine (geometry/sky_box.hpp: DirectSky::engine); where the grid sees the
 // sky directly (SensorGrid::sees_sky_directly), SC also counts the sky seen past every surface and
 // pane, exactly (a façade, a courtyard, a sensor outdoors). nullptr, or another grid: apertures only.
 SkyComponentResult sky_component(const VisibilityEngine& engine, const Scene& scene, const SensorGrid& grid,

@@ -49,7 +49,9 @@ expect_failure "infinite sensor coordinate" "inf.pts:2" --apertures window.rad -
 expect_failure "missing file" "missing.rad" --apertures missing.rad --grid grid.pts --out out.csv
 : > empty.pts
 expect_failure "empty grid" "empty.pts" --apertures window.rad --grid empty.pts --out out.csv
-expect_failure "no apertures" "no apertures" --scene window.rad --grid grid.pts --out out.csv
+# (A sensor that sees the sky directly needs none: this one faces down.)
+printf '1 2 0.85 0 0 -1\n' > down.pts
+expect_failure "no apertures" "no apertures" --scene window.rad --grid down.pts --out out.csv
 # No sensors at all (neither --grid nor --model) is a command line that cannot be run: exit 2.
 "$daylit" df --components sc --apertures window.rad --out out.csv --quiet 2> stderr.txt
 status=$?
