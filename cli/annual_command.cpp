@@ -87,14 +87,6 @@ int run_annual(AnnualCommandOptions opt) {
   // The sun moves over the year: context buildings are kept or left out by their angular size
   // alone (no sun beam), and the summary states the bound for the sky.
   ModelInputs model = load_model(opt.files, SkyModel::cie_overcast);
-  // The reflected part's operator has a channel per window group and one for light from surfaces
-  // lit outdoors; the far ground a sensor sees directly has none yet.
-  if (opt.reflections.all())
-    for (const SensorGrid& grid : model.grids)
-      if (grid.sees_sky_directly)
-        model.scene.notices.push_back(grid.path + ": the far ground that grid '" + grid.name + "' sees directly, past "
-                                      "every surface, is left out of its annual reflected part (the sky and sun it "
-                                      "sees directly are counted; df and illuminance count that ground too)");
   if (!opt.quiet)
     for (const auto& notice : model.scene.notices) std::cerr << "notice: " << notice << '\n';
   // Under mpirun every rank computes the whole AnnualSky (the Perez sky of every hour: a few

@@ -443,6 +443,7 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
                                  seen.sign);
       }
     // The sky seen directly, its rule or patch coefficients as a group's.
+    const bool outdoors = sees_directly && !direct_coefficients[i].regions.empty();
     CircumsolarRule direct_rule;
     std::vector<double> direct_patch_dc;
     double direct_patch_spread = 0;
@@ -485,6 +486,9 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
           part += factor * lux[g];
           outdoor_factor += area > 0 ? factor * group_area[g] / area : 0;
         }
+        // A sensor that sees the sky directly (or a model without apertures) takes the light from
+        // outdoors as it comes: no window, no blinds.
+        if (outdoors || !(area > 0)) outdoor_factor = 1;
         part += outdoor_factor * lux[ng];
         // The estimate with the largest factor of the hour (blinds open where any group is open).
         double largest = 0;

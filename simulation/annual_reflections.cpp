@@ -113,8 +113,8 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
                                       std::size_t groups, const Columns& columns, std::size_t apertures) {
   const std::vector<double>& w = op.response[grid_index];
   const std::vector<double>& ground = op.sensor_ground[grid_index];
-  const std::size_t nodes = op.nodes.size(), sensors = apertures > 0 ? ground.size() / apertures
-                                                                        : (nodes > 0 ? w.size() / nodes : 0);
+  const std::vector<double>& direct_ground = op.sensor_ground_direct[grid_index];
+  const std::size_t nodes = op.nodes.size(), sensors = direct_ground.size();
   const std::size_t width = columns.size();
   std::vector<RowMatrix> d(groups + 1, RowMatrix::Zero(Eigen::Index(sensors), Eigen::Index(width)));
   // Q's entries as (channel, column) once: the loop below visits each sensors-times over.
@@ -142,10 +142,13 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
         for (std::size_t j = 0; j < count; ++j) rows[j][e.column] += wk[j] * e.value;
       }
     }
-    for (std::size_t j = 0; j < count; ++j)
+    for (std::size_t j = 0; j < count; ++j) {
       for (std::size_t a = 0; a < apertures; ++a)
         d[std::size_t(group_of_aperture[a])](Eigen::Index(first + j), Eigen::Index(columns.ground_at())) +=
             ground[(first + j) * apertures + a];
+      // The far ground seen directly: light from outdoors, its own channel's.
+      d[groups](Eigen::Index(first + j), Eigen::Index(columns.ground_at())) += direct_ground[first + j];
+    }
   });
   return d;
 }

@@ -194,6 +194,9 @@ struct ReflectionOperator {
   // Per grid, [sensor × aperture]: ∫ T (n·u) dσ over the far ground seen through each aperture
   // (the part of ERC that comes straight from the far ground, not by way of a node).
   std::vector<std::vector<double>> sensor_ground;
+  // Per grid, per sensor: the same over the far ground seen directly, past every surface (a grid
+  // that sees the sky directly, SensorGrid::sees_sky_directly; else 0): light from outdoors.
+  std::vector<std::vector<double>> sensor_ground_direct;
   std::size_t elements = 0;
   double element_size = 0;           // as used
   std::size_t sides_solved = 0, sides_left_out = 0;

@@ -165,6 +165,11 @@ TEST_CASE("a facade sensor in the open sees the far ground directly: ERC ρ_g/2,
   indoors.sees_sky_directly = false;
   const ReflectionResult none = reflected_components(scene, {0.5}, engine, {&indoors}, o);
   CHECK(none.grids[0].erc_percent[0] == 0);
+  // The annual runs' operator keeps it per sensor, ∫(n·u) dσ over the lower quarter-sphere: π/2.
+  const ReflectionOperator op = reflection_operator(scene, {0.5}, engine, {&grid}, o);
+  CHECK(relative_error(op.sensor_ground_direct[0][0], kPi / 2) < 1e-12);
+  const ReflectionOperator op_indoors = reflection_operator(scene, {0.5}, engine, {&indoors}, o);
+  CHECK(op_indoors.sensor_ground_direct[0][0] == 0);
 }
 
 TEST_CASE("a façade sensor facing a long obstruction of profile angle 25° sees BRE's 27.3 % directly") {
