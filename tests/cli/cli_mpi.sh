@@ -109,6 +109,17 @@ same "df on 2 sensors, 3 ranks" "$work/few.csv" "$work/few-3.csv"
 python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["mpi"]["grids"][0]["sensors_per_rank"] == [1, 1, 0]' \
   "$work/few-3.json" || fail "2 sensors over 3 ranks: not blocks of 1, 1, 0"
 
+# ---- a grid that sees the sky directly (sensors above and beside the office, facing up and out):
+# each rank's block keeps the grid's direct view (SensorGrid::sees_sky_directly), with gradients.
+{ head -n 5 "$samples/office/grid.pts"; echo "5 5 40 0 0 1"; echo "2 3 45 0.6 0 0.8"; echo "-30 5 1 -1 0 0"; } > "$work/outdoors.pts"
+out=(--scene "$samples/office/scene.rad" --apertures "$samples/office/apertures.rad" --grid "$work/outdoors.pts"
+     --threads 1 --quiet --gradient)
+"$daylit" df "${out[@]}" --out "$work/outdoors.csv" || fail "df outdoors, one process"
+mpi 3 df "${out[@]}" --out "$work/outdoors-3.csv" || fail "df outdoors, 3 ranks"
+same "df on a grid that sees the sky directly, 3 ranks" "$work/outdoors.csv" "$work/outdoors-3.csv"
+python3 -c 'import csv, sys; r = list(csv.DictReader(open(sys.argv[1]))); assert float(r[5]["sc_percent"]) > 99.9, r[5]' \
+  "$work/outdoors-3.csv" || fail "outdoors: the sensor above the roof lacks the sky"
+
 # ---- illuminance: a CIE clear sky (cubature per region) and the sun on the office.
 lux=("${office[@]}" --quiet --sky cie-12 --sun-zenith 40 --sun-azimuth 200 --direct-normal 70000 --diffuse-horizontal 15000)
 "$daylit" illuminance "${lux[@]}" --out "$work/lux.csv" --summary "$work/lux.json" || fail "illuminance, one process"

@@ -32,6 +32,15 @@ SensorGrid outdoor_grid(std::vector<Sensor> sensors) {
   return g;
 }
 
+// Nothing above any sensor's horizon here: the aperture every scene needs (a black hatch far
+// below, behind the sensors' planes) and a reflecting wall low and behind them.
+Scene in_the_open() {
+  Scene s;
+  s.apertures.push_back({polygon({{-1, -3, -50}, {1, -3, -50}, {1, -1, -50}, {-1, -1, -50}}, "hatch"), 1.0});
+  s.occluders.push_back(polygon({{20, -10, 0}, {20, -10, 5}, {20, -5, 5}, {20, -5, 0}}, "low wall"));
+  return s;
+}
+
 // A courtyard 10 × 8 m, walls 12 m high, with its floor; in its east wall a window (glass
 // aperture) into a closed room behind it. `roof_opening`: the courtyard's top given as an open
 // aperture, so that its sky comes through an aperture instead of directly.
@@ -66,10 +75,9 @@ std::vector<Sensor> courtyard_sensors() {
 }  // namespace
 
 TEST_CASE("in the open, the sky seen directly is the whole sky: SC 100 % facing up, (3π + 8)/(14π) facing the horizon") {
-  // One aperture, far below every sensor's horizon, and nothing else: the sky comes only directly.
-  Scene scene;
-  scene.apertures.push_back({polygon({{-1, -1, -50}, {1, -1, -50}, {1, 1, -50}, {-1, 1, -50}}, "hatch"), 1.0});
-  const SensorGrid grid = outdoor_grid({{{0, 0, 1}, {0, 0, 1}}, {{3, -2, 7}, {0, 1, 0}}, {{3, -2, 7}, {1, 0, 0}}});
+  // Nothing above the horizon but sky: it comes only directly.
+  const Scene scene = in_the_open();
+  const SensorGrid grid = outdoor_grid({{{0, 0, 6}, {0, 0, 1}}, {{3, -2, 7}, {0, 1, 0}}, {{3, -2, 7}, {1, 0, 0}}});
   const VisibilityEngine engine(scene, GeometryMode::exact);
   const auto direct = direct_sky(scene, {grid}, GeometryMode::exact, SubtractionOrder::front_to_back);
   REQUIRE(direct != nullptr);
@@ -146,12 +154,9 @@ TEST_CASE("the sun seen directly: its whole disk in the open, none of it behind 
 }
 
 TEST_CASE("a facade sensor in the open sees the far ground directly: ERC ρ_g/2, all of its reflected light external") {
-  // A black hatch far below and behind, one reflecting wall behind the sensor's plane:
-  // the sensor, facing +y, sees the lower quarter-sphere of far ground of luminance ρ_g E_out/π,
+  // The sensor, facing +y, sees the lower quarter-sphere of far ground of luminance ρ_g E_out/π,
   // which gives ρ_g E_out/π · π/2: ERC = 50 ρ_g %.
-  Scene scene;
-  scene.apertures.push_back({polygon({{-1, -3, -50}, {1, -3, -50}, {1, -1, -50}, {-1, -1, -50}}, "hatch"), 1.0});
-  scene.occluders.push_back(polygon({{20, -10, 0}, {20, -10, 5}, {20, -5, 5}, {20, -5, 0}}, "wall behind"));
+  const Scene scene = in_the_open();
   const SensorGrid grid = outdoor_grid({{{0, 0, 10}, {0, 1, 0}}});
   const VisibilityEngine engine(scene, GeometryMode::exact);
   ReflectionOptions o;
@@ -176,8 +181,7 @@ TEST_CASE("a façade sensor facing a long obstruction of profile angle 25° sees
   // The wall 1e7 long either way: it misses O(1/L) of the sky (SKY.md's closed form for an
   // infinitely long obstruction: VSC = (3π(1 − sin α) + 8 cos² α)/(14π)).
   const double L = 1e7, alpha = 25 * kPi / 180, distance = 11, top = 10 + distance * std::tan(alpha);
-  Scene scene;
-  scene.apertures.push_back({polygon({{-1, -3, -50}, {1, -3, -50}, {1, -1, -50}, {-1, -1, -50}}, "hatch"), 1.0});
+  Scene scene = in_the_open();
   scene.occluders.push_back(polygon({{-L, distance, 0}, {L, distance, 0}, {L, distance, top}, {-L, distance, top}}, "building"));
   const SensorGrid grid = outdoor_grid({{{0, 0, 10}, {0, 1, 0}}});
   const VisibilityEngine engine(scene, GeometryMode::exact);
@@ -188,9 +192,7 @@ TEST_CASE("a façade sensor facing a long obstruction of profile angle 25° sees
 }
 
 TEST_CASE("annual: a sensor in the open gets the whole diffuse horizontal illuminance and the sun, every hour") {
-  Scene scene;
-  scene.apertures.push_back({polygon({{-1, -3, -50}, {1, -3, -50}, {1, -1, -50}, {-1, -1, -50}}, "hatch"), 1.0});
-  scene.occluders.push_back(polygon({{20, -10, 0}, {20, -10, 5}, {20, -5, 5}, {20, -5, 0}}, "low wall"));
+  const Scene scene = in_the_open();
   const SensorGrid grid = outdoor_grid({{{0, 0, 10}, {0, 0, 1}}});
   const VisibilityEngine engine(scene, GeometryMode::exact);
   const auto direct = direct_sky(scene, {grid}, GeometryMode::exact, SubtractionOrder::front_to_back);
