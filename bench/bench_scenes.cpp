@@ -38,7 +38,7 @@
 // scenes_pairs.csv (what the visibility routine left out, per grid), scenes_floor.csv,
 // scenes_floor_{scene,apertures}.rad and scenes_floor_grid.pts (and scenes_boxes_*: the office with
 // the most boxes of the scaling, on its sensors), scenes_occluders_one_core.csv,
-// scenes_threads.csv, scenes_mpi.csv.
+// scenes_threads.csv, scenes_direct.csv (what a grid that sees the sky directly pays), scenes_mpi.csv.
 
 #include <unistd.h>
 
@@ -52,6 +52,7 @@
 #include <iostream>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -62,6 +63,7 @@
 #include "report/staged_output.hpp"
 #include "materials/scene_materials.hpp"
 #include "geometry/error.hpp"
+#include "geometry/sky_box.hpp"
 #include "bench/sky_baselines.hpp"
 #include "illumination/xoshiro256.hpp"
 #include "simulation/sky_component.hpp"
@@ -973,6 +975,55 @@ void print_thread_summary(std::ostream& out, const std::vector<ThreadRow>& rows)
   }
 }
 
+// ── The sky seen directly (geometry/sky_box.hpp): what a grid flagged as seeing it pays ────────
+
+struct DirectRow {
+  std::string grid;
+  std::size_t sensors = 0, seeing = 0;  // seeing: sensors whose SC the direct view raises
+  double apertures_only_s = 0, with_direct_s = 0;  // CPU per sensor, best of the runs
+};
+
+// The sky component of every sensor through the apertures alone, then with the direct view (the
+// grid flagged), one core, each the best of `runs`.
+DirectRow measure_direct(const std::string& name, const Scene& scene, SensorGrid grid, int runs) {
+  grid.sees_sky_directly = true;
+  const VisibilityEngine engine(scene, GeometryMode::exact);
+  const std::unique_ptr<DirectSky> direct = direct_sky(scene, {grid}, GeometryMode::exact, SubtractionOrder::front_to_back);
+  DirectRow row{name, grid.sensors.size(), 0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const double n = double(grid.sensors.size());
+  for (int run = 0; run < runs; ++run) {
+    VisibilityCounters counters;
+    std::vector<double> alone;
+    double c0 = thread_cpu_seconds();
+    for (const Sensor& sensor : grid.sensors)
+      alone.push_back(sky_component_percent(engine, scene, sensor, SkyModel::cie_overcast, counters));
+    row.apertures_only_s = std::min(row.apertures_only_s, (thread_cpu_seconds() - c0) / n);
+    row.seeing = 0;
+    c0 = thread_cpu_seconds();
+    for (std::size_t i = 0; i < grid.sensors.size(); ++i)
+      row.seeing += sky_component_percent(engine, scene, grid.sensors[i], SkyModel::cie_overcast, counters, nullptr,
+                                          &direct->engine) > alone[i];
+    row.with_direct_s = std::min(row.with_direct_s, (thread_cpu_seconds() - c0) / n);
+  }
+  return row;
+}
+
+void write_direct_table(const std::string& path, const std::vector<DirectRow>& rows) {
+  std::ofstream f(path);
+  f << "grid,sensors,sensors_seeing_sky_directly,apertures_only_cpu_s_per_sensor,with_direct_view_cpu_s_per_sensor,ratio\n";
+  for (const DirectRow& r : rows)
+    f << fmt::format("{},{},{},{:.6g},{:.6g},{:.4g}\n", r.grid, r.sensors, r.seeing, r.apertures_only_s, r.with_direct_s,
+                     r.with_direct_s / r.apertures_only_s);
+}
+
+void print_direct_summary(std::ostream& out, const std::vector<DirectRow>& rows) {
+  out << "\n## The sky seen directly (one core, exact; the grid flagged as seeing it)\n\n"
+         "| grid | sensors | seeing it | apertures only | with the direct view | ratio |\n|---|---|---|---|---|---|\n";
+  for (const DirectRow& r : rows)
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.2f} |\n", r.grid, r.sensors, r.seeing, seconds_text(r.apertures_only_s),
+                       seconds_text(r.with_direct_s), r.with_direct_s / r.apertures_only_s);
+}
+
 // ── MPI ranks: `mpirun -n R daylit df` on the office with boxes ─────────────────────────────
 
 struct MpiRow {
@@ -1080,6 +1131,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   std::vector<FloorRow> floor_rows;
   std::vector<OrderRow> order_rows;
   std::vector<ThreadRow> thread_rows;
+  std::vector<DirectRow> direct_rows;
   Floor floor;
   {
     bench::StatusLine status(!opt.quiet && stderr_is_terminal());
@@ -1094,6 +1146,14 @@ int run_bench_scenes(const BenchOptions& opt) {
     floor_rows = measure_floor(samples.front(), settings.floor_rooms, settings.timing_runs, status, floor);
     order_rows = measure_orders(samples.front(), settings.order_boxes, settings.scaling_stride, status);
     thread_rows = measure_threads(samples.front(), settings.thread_sensors, settings.scaling_runs, status);
+    // Enclosed grids (nothing seen directly: the cost of a flag set in vain) and the office's grid
+    // lifted 40 m, above its roof (every sensor sees the whole sky).
+    for (const Sample& sample : samples)
+      direct_rows.push_back(measure_direct(sample.name, sample.scene, every_kth(sample.grid, settings.scaling_stride),
+                                           settings.timing_runs));
+    SensorGrid lifted = every_kth(samples.front().grid, settings.scaling_stride);
+    for (Sensor& sensor : lifted.sensors) sensor.position.z += 40;
+    direct_rows.push_back(measure_direct("office + 40 m", samples.front().scene, lifted, settings.timing_runs));
     status.clear();
   }
   const std::vector<Fit> fits = fit_exponents(scaling);
@@ -1109,6 +1169,7 @@ int run_bench_scenes(const BenchOptions& opt) {
   write_floor_table(outputs.stage(file("scenes_floor.csv")), floor_rows);
   write_order_table(outputs.stage(file("scenes_occluders_one_core.csv")), order_rows);
   write_thread_table(outputs.stage(file("scenes_threads.csv")), thread_rows);
+  write_direct_table(outputs.stage(file("scenes_direct.csv")), direct_rows);
   write_model(floor, outputs.stage(file("scenes_floor_scene.rad")), outputs.stage(file("scenes_floor_apertures.rad")),
               outputs.stage(file("scenes_floor_grid.pts")));
   // The office with the most boxes of the scaling (665 polygons with 128), on the sensors it used.
@@ -1135,12 +1196,13 @@ int run_bench_scenes(const BenchOptions& opt) {
   print_floor_summary(std::cout, floor_rows);
   print_order_summary(std::cout, order_rows);
   print_thread_summary(std::cout, thread_rows);
+  print_direct_summary(std::cout, direct_rows);
   print_mpi_summary(std::cout, mpi_rows, mpi_note);
   if (!opt.quiet)
     std::cerr << fmt::format("bench scenes: wrote scenes_error_vs_time.csv/.png, scenes_scaling.csv/.png, scenes_scaling_fit.csv, "
                              "scenes_pairs.csv, scenes_floor.csv, the largest floor (scenes_floor_scene.rad, "
                              "scenes_floor_apertures.rad, scenes_floor_grid.pts), the office with boxes (scenes_boxes_*), "
-                             "scenes_occluders_one_core.csv, scenes_threads.csv and scenes_mpi.csv "
+                             "scenes_occluders_one_core.csv, scenes_threads.csv, scenes_direct.csv and scenes_mpi.csv "
                              "into {} ({:.1f} s)\n",
                              opt.out, seconds_since(t0));
   return 0;

@@ -98,7 +98,7 @@ scaling=$out/scenes_scaling.csv
 [ "$(awk -F, 'NR > 1 && $4 > 0' "$out/scenes_pairs.csv" | wc -l)" -ge 2 ] || fail "pairs: fewer than 2 grids counted"
 # The generated office floor: other rooms' windows are hidden by walls, decided without clipping
 # (column 14, pairs_covered), and its largest floor is written for other builds to run.
-for f in scenes_floor.csv scenes_floor_scene.rad scenes_floor_apertures.rad scenes_floor_grid.pts scenes_occluders_one_core.csv scenes_threads.csv scenes_mpi.csv; do
+for f in scenes_floor.csv scenes_floor_scene.rad scenes_floor_apertures.rad scenes_floor_grid.pts scenes_occluders_one_core.csv scenes_threads.csv scenes_direct.csv scenes_mpi.csv; do
   [ -s "$out/$f" ] || fail "$f missing or empty"
 done
 # The MPI table says why it is empty in a build without MPI (tests/cli/cli_mpi.sh checks its rows
@@ -107,6 +107,9 @@ if ! grep -q "^# not measured: this daylit is built without DAYLIT_MPI" "$out/sc
   grep -q "^none," "$out/scenes_mpi.csv" || fail "scenes_mpi.csv: neither a reason nor rows: $(cat "$out/scenes_mpi.csv")"
 fi
 ls "$out"/scenes_mpi_ranks_* > /dev/null 2>&1 && fail "the MPI runs' CSVs were left behind"
+# The sky seen directly: the samples' enclosed grids see none of it; lifted above the roof, all.
+awk -F, 'NR > 1 && ($1 == "office" || $1 == "hall") && $3 != 0 { bad = 1 } NR > 1 && $1 == "office + 40 m" && $3 != $2 { bad = 1 }
+         END { exit bad }' "$out/scenes_direct.csv" || fail "scenes_direct.csv: $(cat "$out/scenes_direct.csv")"
 [ "$(awk -F, 'NR > 1 && $14 > 0' "$out/scenes_floor.csv" | wc -l)" -ge 2 ] || fail "floor: no pair found hidden by walls"
 "$daylit" df --components sc --scene "$out/scenes_floor_scene.rad" --apertures "$out/scenes_floor_apertures.rad" --grid "$out/scenes_floor_grid.pts" \
   --quiet --out "$out/floor_df.csv" --summary "$out/floor_df.json" || fail "df on the written floor: exit status $?"
