@@ -214,6 +214,7 @@ int run_df(DfOptions opt) {
     summary["grids"].push_back({{"name", r.grid->name},
                                 {"path", r.grid->path},
                                 {"count", s.count},
+                                {"sees_sky_directly", r.grid->sees_sky_directly},
                                 {"df_percent", {{"mean", s.mean}, {"median", s.median}, {"min", s.min}, {"max", s.max}}},
                                 {"uniformity", {{"min_over_mean", s.min_over_mean}, {"min_over_median", s.min_over_median}}},
                                 {"share_at_or_above_df_percent", shares},

@@ -505,6 +505,7 @@ int run_illuminance(IlluminanceOptions opt) {
     summary["grids"].push_back({{"name", g.grid->name},
                                 {"path", g.grid->path},
                                 {"count", s.count},
+                                {"sees_sky_directly", g.grid->sees_sky_directly},
                                 {"illuminance_lux", {{"mean", s.mean}, {"median", s.median}, {"min", s.min}, {"max", s.max}}},
                                 {"uniformity", {{"min_over_mean", s.min_over_mean}, {"min_over_median", s.min_over_median}}},
                                 {"share_at_or_above_lux", shares},

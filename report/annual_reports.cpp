@@ -109,6 +109,7 @@ nlohmann::json annual_grid_json(const AnnualGridReport& g, const std::vector<std
   return {{"name", g.grid->name},
           {"path", g.grid->path},
           {"count", g.result.sensors},
+          {"sees_sky_directly", g.grid->sees_sky_directly},
           {"sda_300_50_percent", m.sda_300_50_percent},
           {"ase_1000_250_percent", m.ase_1000_250_percent},
           {"mean_da_300_percent", m.mean_da_300_percent},
