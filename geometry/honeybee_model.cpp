@@ -459,6 +459,7 @@ class HbjsonReader {
     const json& geometry = r_.member(face, path, "geometry");
     const std::vector<Vec3> boundary = r_.loop(r_.member(geometry, path + ".geometry", "boundary"), path + ".geometry.boundary");
     std::vector<std::vector<Vec3>> holes = holes_of(geometry, path + ".geometry");
+    if (!room_.empty()) out_.room_faces.push_back({room_, boundary});
     if (type == "Floor" && !room_.empty()) {
       out_.floors.push_back({room_, {boundary}});
       out_.floors.back().loops.insert(out_.floors.back().loops.end(), holes.begin(), holes.end());

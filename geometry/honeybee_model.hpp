@@ -42,6 +42,13 @@ struct HoneybeeModel {
     std::vector<std::vector<Vec3>> loops;
   };
   std::vector<RoomFloor> floors;
+  // Every face of each room, its outer boundary (sub-faces lie in it): the room's closed volume,
+  // for what lies inside it (daylit grid keeps the sensors its room encloses).
+  struct RoomFace {
+    std::string room;
+    std::vector<Vec3> boundary;
+  };
+  std::vector<RoomFace> room_faces;
   std::vector<SensorGrid> grids;  // the model's, in its order
   // What an HBJSON held (a folder leaves them 0: it holds polygons, not rooms).
   long rooms = 0, faces = 0, apertures = 0, doors = 0, shades = 0;

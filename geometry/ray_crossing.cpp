@@ -43,6 +43,15 @@ double nearest_crossing(const std::vector<Polygon>& polygons, const Vec3& origin
   return best;
 }
 
+std::size_t crossing_count(const std::vector<Polygon>& polygons, const Vec3& origin, const Vec3& direction) {
+  std::size_t count = 0;
+  for (const Polygon& p : polygons)
+    if (p.vertices.size() >= 3 &&
+        std::isfinite(crossing(p, newell_normal(p.vertices), origin, direction, std::numeric_limits<double>::infinity())))
+      ++count;
+  return count;
+}
+
 RayBlockers::RayBlockers(const std::vector<Polygon>& polygons) {
   for (const Polygon& p : polygons)
     if (p.vertices.size() >= 3) planes_.push_back({&p, newell_normal(p.vertices)});

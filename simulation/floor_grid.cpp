@@ -11,6 +11,7 @@
 #include "geometry/obj_material_map.hpp"
 #include "geometry/obj_model.hpp"
 #include "geometry/rad_reader.hpp"
+#include "geometry/ray_crossing.hpp"
 
 namespace daylit {
 
@@ -138,15 +139,31 @@ std::vector<std::pair<std::string, std::vector<FloorOutline>>> obj_floors(const 
   return named;
 }
 
+// Whether a room's faces enclose p: the parity of the faces crossed by a ray nearly straight up,
+// the majority of three rays tilted apart (one through an edge two faces share, a roof's ridge
+// above a lattice point, may count both or neither).
+bool encloses(const std::vector<Polygon>& room, const Vec3& p) {
+  static const Vec3 rays[3] = {{1.3e-4, 0.7e-4, 1}, {-0.9e-4, 1.1e-4, 1}, {0.5e-4, -1.7e-4, 1}};
+  int odd = 0;
+  for (const Vec3& d : rays) odd += crossing_count(room, p, d) % 2;
+  return odd >= 2;
+}
+
 }  // namespace
 
 std::vector<SensorGrid> floor_grids(const FloorSources& sources, const FloorGridOptions& options,
                                     std::vector<std::string>& notices) {
   std::vector<std::pair<std::string, std::vector<FloorOutline>>> named;  // in the model's order
+  std::map<std::string, std::vector<Polygon>> room_faces;  // an HBJSON's rooms: their closed volumes
   if (!sources.model.empty() && is_obj_path(sources.model)) {
     named = obj_floors(sources, notices);
   } else if (!sources.model.empty()) {
     const HoneybeeModel model = read_honeybee_model(sources.model);
+    for (const auto& f : model.room_faces) {
+      Polygon p;
+      p.vertices = f.boundary;
+      room_faces[f.room].push_back(std::move(p));
+    }
     for (const auto& f : model.floors) {
       if (named.empty() || named.back().first != f.room) named.push_back({f.room, {}});
       named.back().second.push_back({f.loops});
@@ -178,6 +195,24 @@ std::vector<SensorGrid> floor_grids(const FloorSources& sources, const FloorGrid
     SensorGrid grid;
     grid.name = name;
     grid.sensors = floor_grid(floors, options);
+    // A room's sensors at its height above the floor may stand outside it: above a roof that slopes
+    // down to the eaves (an attic), where they would see the sky directly. They are left out,
+    // unless the room encloses none of them (its faces do not close: said, and kept).
+    if (const auto faces = room_faces.find(name); faces != room_faces.end() && !grid.sensors.empty()) {
+      std::vector<Sensor> inside;
+      for (const Sensor& s : grid.sensors)
+        if (encloses(faces->second, s.position)) inside.push_back(s);
+      const std::size_t outside = grid.sensors.size() - inside.size();
+      if (inside.empty()) {
+        notices.push_back("room '" + name + "': its faces enclose none of its " + std::to_string(outside) +
+                          " sensors (not a closed volume?): kept them all");
+      } else if (outside > 0) {
+        notices.push_back("room '" + name + "': " + std::to_string(outside) + " of its " +
+                          std::to_string(grid.sensors.size()) + " sensors lie outside it (above a roof lower than " +
+                          "the sensors' height, as at an attic's eaves): left out");
+        grid.sensors = std::move(inside);
+      }
+    }
     if (grid.sensors.empty()) {
       if (empty++ == 0) first_empty = name;
       continue;

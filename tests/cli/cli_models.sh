@@ -129,6 +129,16 @@ if [ "$(awk '{printf "%s,%s,%s;", $1, $2, $3}' grids/floor.pts)" != "1,1,0.84999
 fi
 "$daylit" grid --scene floor.rad --out no-such-dir > /dev/null 2> stderr.txt
 if [ $? -ne 1 ] || ! grep -q "no-such-dir: output directory does not exist" stderr.txt; then echo "FAIL grid: missing folder"; failures=$((failures + 1)); fi
+# An attic (Honeybee's multiroom sample: a gable roof down to its floor's edges): the sensors at
+# 0.85 m near the eaves stand above the roof, outside the room; they are left out (72 of 324),
+# so that no sensor of its grid sees the sky directly.
+"$daylit" grid --model "$data/model_complete_multiroom_radiance.hbjson" --out grids 2> stderr.txt > /dev/null
+if [ "$(wc -l < grids/Attic.pts)" -ne 252 ] || ! grep -q "room 'Attic': 72 of its 324 sensors lie outside it" stderr.txt ||
+   grep -q "lie outside" <(grep -v "'Attic'" stderr.txt); then
+  echo "FAIL grid --model: the attic's sensors above its roof: $(cat stderr.txt)"; failures=$((failures + 1))
+fi
+"$daylit" df --components sc --model "$data/model_complete_multiroom_radiance.hbjson" --grid grids/Attic.pts --out attic.csv 2> stderr.txt
+if grep -q "see the sky directly" stderr.txt; then echo "FAIL the attic's grid sees the sky directly"; failures=$((failures + 1)); fi
 echo "ok   daylit grid"
 
 
