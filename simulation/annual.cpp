@@ -404,7 +404,8 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
     area += w;
   }
   if (reflected != nullptr) {
-    if (reflected->sensors != n || reflected->hours != hours || reflected->channels != ng + 1)
+    if (reflected->sensors != n || reflected->hours != hours || reflected->channels != ng + 1 ||
+        reflected->outdoors.size() != n)
       throw Error("the reflected hours do not match the grid");
     r.reflections = true;
     r.max_reflection_estimate_lux.assign(n, 0.0);
@@ -443,7 +444,6 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
                                  seen.sign);
       }
     // The sky seen directly, its rule or patch coefficients as a group's.
-    const bool outdoors = sees_directly && !direct_coefficients[i].regions.empty();
     CircumsolarRule direct_rule;
     std::vector<double> direct_patch_dc;
     double direct_patch_spread = 0;
@@ -486,9 +486,10 @@ AnnualGridResult annual_grid(const VisibilityEngine& engine, const Scene& scene,
           part += factor * lux[g];
           outdoor_factor += area > 0 ? factor * group_area[g] / area : 0;
         }
-        // A sensor that sees the sky directly (or a model without apertures) takes the light from
-        // outdoors as it comes: no window, no blinds.
-        if (outdoors || !(area > 0)) outdoor_factor = 1;
+        // A sensor that sees the sky or the far ground directly (or a model without apertures)
+        // takes the light from outdoors as it comes: no window, no blinds. The reflection
+        // operator decides it, by df's own test (ReflectionOperator::sensor_outdoors).
+        if (reflected->outdoors[i] != 0 || !(area > 0)) outdoor_factor = 1;
         part += outdoor_factor * lux[ng];
         // The estimate with the largest factor of the hour (blinds open where any group is open).
         double largest = 0;

@@ -308,6 +308,7 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   out.channels = groups + 1;
   out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
   out.estimate.assign(out.sensors * out.hours, 0.0f);
+  out.outdoors = fine_op.sensor_outdoors[grid_index];
 
   std::vector<std::size_t> lit;
   for (std::size_t h = 0; h < sky_hours.size(); ++h)

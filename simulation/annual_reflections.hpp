@@ -61,6 +61,7 @@ struct ReflectedHours {
   std::size_t sensors = 0, hours = 0, channels = 0;  // channels: window groups, then "lit outdoors"
   std::vector<float> lux;                            // [(sensor × hours + hour) × channels]
   std::vector<float> estimate;                       // [sensor × hours]: the error estimate, all channels
+  std::vector<char> outdoors;                        // [sensor]: sees the sky or far ground directly
   double time_s = 0;
 };
 

@@ -1530,6 +1530,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     const std::size_t m = grid->sensors.size();
     Eigen::MatrixXd st = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(m));
     std::vector<double> ground(m * scene.apertures.size(), 0.0), ground_direct(m, 0.0);
+    std::vector<char> outdoors(m, 0);
     ProgressCallback grid_progress;
     if (progress) grid_progress = [&progress, before](std::size_t done) { progress(before + done); };
     before += m;
@@ -1537,10 +1538,12 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
       const Sensor& sensor = grid->sensors[s];
       for (const LightView& v :
            t.views(sensor.position, sensor.normal, VisibilityOptions::kNoOccluder, grid->sees_sky_directly, counters)) {
-        if (v.aperture < 0)
+        if (v.aperture < 0) {
           ground_direct[s] += v.sign * v.ground;
-        else
+          outdoors[s] = 1;
+        } else {
           ground[s * scene.apertures.size() + std::size_t(v.aperture)] += v.sign * v.ground;
+        }
       }
       if (n == 0) return;
       t.transport(mesh, sensor.position, sensor.normal, std::size_t(-1), counters,
@@ -1560,6 +1563,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     op.response.push_back(std::move(w));
     op.sensor_ground.push_back(std::move(ground));
     op.sensor_ground_direct.push_back(std::move(ground_direct));
+    op.sensor_outdoors.push_back(std::move(outdoors));
   }
   op.stages.push_back({"sensors' views and transport", sensor_time});
   op.stages.push_back({"solves for the sensors' rows of W", solve_time});

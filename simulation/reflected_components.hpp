@@ -197,6 +197,10 @@ struct ReflectionOperator {
   // Per grid, per sensor: the same over the far ground seen directly, past every surface (a grid
   // that sees the sky directly, SensorGrid::sees_sky_directly; else 0): light from outdoors.
   std::vector<std::vector<double>> sensor_ground_direct;
+  // Per grid, per sensor: whether it sees anything directly, sky or far ground (1) — the same test
+  // as df's (Transport::direct): such a sensor is outdoors, and takes light from outdoors as it
+  // comes, through no window and no blinds.
+  std::vector<std::vector<char>> sensor_outdoors;
   std::size_t elements = 0;
   double element_size = 0;           // as used
   std::size_t sides_solved = 0, sides_left_out = 0;

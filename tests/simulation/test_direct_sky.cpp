@@ -175,6 +175,19 @@ TEST_CASE("a facade sensor in the open sees the far ground directly: ERC ρ_g/2,
   CHECK(relative_error(op.sensor_ground_direct[0][0], kPi / 2) < 1e-12);
   const ReflectionOperator op_indoors = reflection_operator(scene, {0.5}, engine, {&indoors}, o);
   CHECK(op_indoors.sensor_ground_direct[0][0] == 0);
+  // Outdoors is what df takes it for: anything seen directly, sky or far ground alone. A sensor
+  // facing down sees no sky, only far ground (π, all of it; below the hatch, nothing of the scene
+  // is in front of it): it is outdoors too, so that annual runs give it the light from outdoors
+  // undimmed by any window's blinds, as df does.
+  CHECK(op.sensor_outdoors[0][0] == 1);
+  CHECK(op_indoors.sensor_outdoors[0][0] == 0);
+  const SensorGrid down = outdoor_grid({{{0, 0, -60}, {0, 0, -1}}});
+  const ReflectionOperator op_down = reflection_operator(scene, {0.5}, engine, {&down}, o);
+  CHECK(op_down.sensor_outdoors[0][0] == 1);
+  CHECK(relative_error(op_down.sensor_ground_direct[0][0], kPi) < 1e-12);
+  const ReflectionResult r_down = reflected_components(scene, {0.5}, engine, {&down}, o);
+  CHECK(relative_error(r_down.grids[0].erc_percent[0], 20.0) < 1e-12);
+  CHECK(r_down.grids[0].irc_percent[0] == 0);
 }
 
 TEST_CASE("a façade sensor facing a long obstruction of profile angle 25° sees BRE's 27.3 % directly") {
