@@ -178,6 +178,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
         {"exchanges", r.reciprocity.entries},
         {"exchanges_added", r.reciprocity.entries_added},
         {"conjugate_gradient_iterations", r.reciprocity.iterations},
+        {"conjugate_gradient_coarse_aggregates", r.reciprocity.coarse_aggregates},
         {"closure_residual", r.reciprocity.residual},
         {"how",
          "the exchanges w_u K_uj between nodes (w = element area / 3) replaced by the symmetric ones nearest to "

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <utility>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -66,6 +68,88 @@ void sweep_partners(const std::vector<TransportRow>& rows, const Live& live, Vis
       visit(c, u, partner);
     }
   });
+}
+
+// The coarse space of the preconditioner (header): per unknown its aggregate (kNone: none) and
+// sign, and the Cholesky factor of Zᵀ A Z.
+struct CoarseSpace {
+  std::vector<std::uint32_t> aggregate;
+  std::vector<double> sign;
+  std::vector<std::vector<std::uint32_t>> members;
+  Eigen::LLT<Eigen::MatrixXd> factor;
+  bool usable() const { return !members.empty(); }
+};
+
+constexpr double kStrongExchange = 0.2;     // |S_uj| ≥ this × min(diagonal_u, diagonal_j)
+constexpr std::size_t kMaxAggregates = 2000;  // the dense Cholesky: 2.7e9 operations, 32 MB
+
+// A = diag(diagonal) + |S| (rows `s`, columns `column`). Plain aggregation in index order, so
+// that the same system gives the same aggregates: a root all of whose strong neighbours are
+// free takes them (sign −1 against its +1); then a free node with a strong neighbour joins the
+// strongest one's aggregate with the sign opposite to it.
+CoarseSpace coarse_space(const std::vector<double>& diagonal, const std::vector<std::vector<double>>& s,
+                         const std::vector<std::vector<std::uint32_t>>& column) {
+  const std::size_t n = diagonal.size();
+  CoarseSpace c;
+  c.aggregate.assign(n, kNone);
+  c.sign.assign(n, 0.0);
+  const auto strong = [&](std::size_t u, std::size_t i) {
+    const std::uint32_t j = column[u][i];
+    return diagonal[u] > 0 && diagonal[j] > 0 && std::abs(s[u][i]) >= kStrongExchange * std::min(diagonal[u], diagonal[j]);
+  };
+  std::size_t count = 0;
+  for (std::size_t u = 0; u < n; ++u) {
+    bool any = false, free = true;
+    for (std::size_t i = 0; i < s[u].size() && free; ++i)
+      if (strong(u, i)) {
+        any = true;
+        free = c.aggregate[column[u][i]] == kNone && column[u][i] != u;
+      }
+    if (!any || !free || c.aggregate[u] != kNone) continue;
+    c.aggregate[u] = std::uint32_t(count);
+    c.sign[u] = 1;
+    for (std::size_t i = 0; i < s[u].size(); ++i)
+      if (strong(u, i)) {
+        c.aggregate[column[u][i]] = std::uint32_t(count);
+        c.sign[column[u][i]] = -1;
+      }
+    ++count;
+  }
+  for (std::size_t u = 0; u < n; ++u) {
+    if (c.aggregate[u] != kNone) continue;
+    double best = 0;
+    std::uint32_t to = kNone;
+    for (std::size_t i = 0; i < s[u].size(); ++i) {
+      const std::uint32_t j = column[u][i];
+      if (strong(u, i) && c.aggregate[j] != kNone && c.sign[j] != 0 && std::abs(s[u][i]) > best) {
+        best = std::abs(s[u][i]);
+        to = j;
+      }
+    }
+    if (to == kNone) continue;
+    c.aggregate[u] = c.aggregate[to];
+    c.sign[u] = -c.sign[to];
+  }
+  if (count == 0 || count > kMaxAggregates) return CoarseSpace{};
+  c.members.resize(count);
+  for (std::size_t u = 0; u < n; ++u)
+    if (c.aggregate[u] != kNone) c.members[c.aggregate[u]].push_back(std::uint32_t(u));
+  // Row a of Zᵀ A Z by one task: over a's members, their diagonal and their signed |S| towards
+  // each aggregate.
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(Eigen::Index(count), Eigen::Index(count));
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t g) {
+    for (const std::uint32_t u : c.members[g]) {
+      a(Eigen::Index(g), Eigen::Index(g)) += diagonal[u];
+      for (std::size_t i = 0; i < s[u].size(); ++i) {
+        const std::uint32_t j = column[u][i];
+        if (c.aggregate[j] != kNone)
+          a(Eigen::Index(g), Eigen::Index(c.aggregate[j])) += c.sign[u] * c.sign[j] * std::abs(s[u][i]);
+      }
+    }
+  });
+  c.factor.compute(a);  // reads the lower triangle
+  if (c.factor.info() != Eigen::Success) return CoarseSpace{};
+  return c;
 }
 
 }  // namespace
@@ -162,8 +246,20 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
       y[u] = v;
     });
   };
+  const CoarseSpace coarse = coarse_space(diagonal, s, column);
+  report.coarse_aggregates = coarse.members.size();
   const auto precondition = [&](const std::vector<double>& r, std::vector<double>& z) {
     for (std::size_t u = 0; u < n; ++u) z[u] = diagonal[u] > 0 ? r[u] / diagonal[u] : 0;
+    if (!coarse.usable()) return;
+    Eigen::VectorXd rc(Eigen::Index(coarse.members.size()));
+    for (std::size_t g = 0; g < coarse.members.size(); ++g) {
+      double sum = 0;
+      for (const std::uint32_t u : coarse.members[g]) sum += coarse.sign[u] * r[u];
+      rc(Eigen::Index(g)) = sum;
+    }
+    const Eigen::VectorXd y = coarse.factor.solve(rc);
+    for (std::size_t u = 0; u < n; ++u)
+      if (coarse.aggregate[u] != kNone) z[u] += coarse.sign[u] * y(Eigen::Index(coarse.aggregate[u]));
   };
   // The closure defect left, relative to the node's weight: 1e-15 is the roundoff of the rows'
   // own sums (the closed box's rows sum to 1 within it).

@@ -26,9 +26,25 @@
 //     (diag(Σ_j |S_uj| + |X_u|) + |S|) λ = d,   d_u = Σ_j (S_uj − G_uj),
 // a symmetric positive semi-definite system (a signless graph Laplacian plus |X|, definite where
 // every part of the visibility graph that is bipartite has some escape), solved by conjugate
-// gradients with Jacobi preconditioning. G' is symmetric to the last bit (λ_u + λ_j is computed
+// gradients preconditioned by Jacobi and a coarse correction (below). G' is symmetric to the last bit (λ_u + λ_j is computed
 // the same from both sides), so energy is conserved to roundoff on every mesh whatever the
 // solver's residual, which only sets how closely the row sums keep their collocated values.
+//
+// The coarse correction. Two surfaces that face each other closely and see little else (a
+// ground polygon 1 cm below a building's floor: each node of the floor's underside sees the
+// ground element just below it, that element's nodes see the floor above it, and almost nothing
+// escapes) make small, nearly closed, nearly bipartite parts of the graph, each with a near-null
+// vector of the system: λ = +c on one side's nodes, −c on the other's. Jacobi leaves them to
+// hundreds of iterations (473 on an L-shaped house with a ground polygon 1 cm below its floor, 29
+// without that ground). Such a vector is local and signed, not smooth (a lattice of groups per
+// surface side, tried first, changed nothing), so the coarse space is algebraic: nodes joined
+// by strong exchanges (|S_uj| at least a fifth of the smaller diagonal) are aggregated around a
+// root, each with the sign opposite to its root's (smoothed-aggregation multigrid's plain
+// aggregation, with the sign of a signless Laplacian's near-null vectors), and the
+// preconditioner is D⁻¹ + Z (Zᵀ A Z)⁻¹ Zᵀ (two-level additive Schwarz), Z the aggregates' signed
+// indicators. Rooms whose nodes each see many others have no strong exchanges and no coarse
+// space: Jacobi alone, as before. Over 2,000 aggregates the coarse space is left out (its dense
+// Cholesky would cost more than it saves).
 // The changes are of the order of the collocation's own reciprocity defect (O(h²) for linear
 // elements); the report gives their size.
 
@@ -47,6 +63,7 @@ struct ReciprocityReport {
   double max_entry_change = 0;       // max |G'_uj − G_uj| / max(|G_uj|, |G_ju|)
   double max_row_change = 0;         // max_u |Σ_j K'_uj − Σ_j K_uj|: the escaping fraction's change
   int iterations = 0;                // of conjugate gradients
+  std::size_t coarse_aggregates = 0;  // of the coarse correction (0: Jacobi alone)
   double residual = 0;               // max_u |closure defect| / w_u after them
 };
 

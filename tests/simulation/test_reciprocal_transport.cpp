@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -122,8 +123,11 @@ Reference reference(const System& sys) {
 // What make_reciprocal left against the reference: the largest relative difference of a live
 // exchange, whether every row is sorted with each column once, whether the live pattern is the
 // symmetric one, and the dead columns' entries as given.
-void check_against_reference(std::size_t n, std::uint64_t seed) {
-  System sys = random_system(n, seed);
+// `tolerance`: on G' against the reference, relative to the largest exchange; `closure`: on the
+// closure defect left, relative to each node's weight.
+ReciprocityReport check_against_reference(System sys, const std::string& name, double tolerance = 1e-14,
+                                          double closure = 1e-14) {
+  const std::size_t n = sys.rows.size();
   const Reference ref = reference(sys);
   const ReciprocityReport report = make_reciprocal(sys.rows, sys.weight);
   const auto live = [&](std::size_t u) { return sys.weight[u] > 0; };
@@ -156,16 +160,59 @@ void check_against_reference(std::size_t n, std::uint64_t seed) {
     // told apart; the random values make none).
     CHECK(live_entries == expected_live);
   }
-  INFO("n = " << n << ", seed " << seed << ": " << report.iterations << " iterations, max |G' - reference| / max |G'| = " << worst
+  INFO(name << ": " << report.iterations << " iterations, max |G' - reference| / max |G'| = " << worst
                << ", max |w_u K'_uj - w_j K'_ju| / max |G'| = " << asymmetry);
   // The conjugate gradients stop at a closure defect of 1e-15 of each node's weight, and the
   // reference's LU in long double is closer than that: their G' agree to that defect times the
   // system's condition (the escape of 2 % or more keeps it modest): measured at most 1e-15 of the
   // largest exchange (n = 5 … 150, three seeds each), held to 1e-14. G' itself is symmetric to the last bit; w_u K'_uj = w_u (G'_uj / w_u)
   // rounds twice, so the two sides differ by at most 2 × 2^-53 of |G'| each.
-  CHECK(worst <= 1e-14);
+  CHECK(worst <= tolerance);
   CHECK(asymmetry <= 0x1p-51);
-  CHECK(report.residual <= 1e-14);
+  CHECK(report.residual <= closure);
+  return report;
+}
+
+// A floor's underside 1 cm above a ground polygon, as collocation gives it, along a strip under
+// a building: `elements` ground elements of three nodes each (weight 0.2), four floor nodes
+// above each (weight 0.05). A floor node sees the element below it (its three nodes by random
+// barycentric shares) and leaks 1e-3 to the next element; a ground node sees the floor nodes
+// above its element and leaks 1e-3 to those of the next; almost nothing escapes (1e-7 of the
+// floor nodes' rows, 1e-6 of the ground's) but at the strip's two ends, the building's edges,
+// where the ground's nodes see the open (0.3) and the last leak escapes. Each element with its
+// floor nodes is a nearly closed bipartite part: a near-null vector of the Lagrange system (+c
+// on the floor nodes, −c on the ground's), and c varying slowly along the strip is one too.
+System floor_above_ground(std::size_t elements, std::uint64_t seed) {
+  Xoshiro256 rng(seed);
+  constexpr std::size_t kFloorPerElement = 4;
+  const std::size_t per = 3 + kFloorPerElement, n = elements * per;
+  const auto ground = [&](std::size_t e, std::size_t k) { return std::uint32_t(e * per + k); };
+  const auto floor = [&](std::size_t e, std::size_t f) { return std::uint32_t(e * per + 3 + f); };
+  System sys;
+  sys.rows.resize(n);
+  sys.weight.resize(n);
+  for (std::size_t e = 0; e < elements; ++e) {
+    const bool last = e + 1 == elements, edge = e == 0 || last;
+    const std::size_t next = e + 1;
+    for (std::size_t f = 0; f < kFloorPerElement; ++f) {
+      double share[3], total = 0;
+      for (double& b : share) total += b = rng.uniform(0.2, 1.0);
+      TransportRow& row = sys.rows[floor(e, f)];
+      for (std::size_t k = 0; k < 3; ++k) row.emplace_back(ground(e, k), (1 - 1e-7 - 1e-3) * share[k] / total);
+      if (!last) row.emplace_back(ground(next, std::size_t(rng.uniform_int(0, 2))), 1e-3);
+      sys.weight[floor(e, f)] = 0.05;
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      double share[kFloorPerElement], total = 0;
+      for (double& b : share) total += b = rng.uniform(0.2, 1.0);
+      TransportRow& row = sys.rows[ground(e, k)];
+      const double escaping = edge ? 0.3 : 1e-6;
+      for (std::size_t f = 0; f < kFloorPerElement; ++f) row.emplace_back(floor(e, f), (1 - escaping - 1e-3) * share[f] / total);
+      if (!last) row.emplace_back(floor(next, std::size_t(rng.uniform_int(0, kFloorPerElement - 1))), 1e-3);
+      sys.weight[ground(e, k)] = 0.2;
+    }
+  }
+  return sys;
 }
 
 }  // namespace
@@ -173,7 +220,29 @@ void check_against_reference(std::size_t n, std::uint64_t seed) {
 TEST_CASE("reciprocity: the exchanges made reciprocal and closed are the least-squares ones of the specification") {
   // Sizes around the sweep's 16 chunks (fewer rows than chunks, one row a chunk, many).
   for (const std::size_t n : {2, 5, 16, 17, 60, 150})
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) check_against_reference(n, seed);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+      check_against_reference(random_system(n, seed), "random, n = " + std::to_string(n) + ", seed " + std::to_string(seed));
+}
+
+TEST_CASE("reciprocity: a floor 1 cm above the ground, nearly closed and bipartite, is solved as specified in few iterations") {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    // The solver stops at a closure defect of 1e-15 of each node's weight; what that leaves in G'
+    // grows with the Lagrange system's condition, here about 1e4 (c varying slowly along the
+    // strip, pinned at its ends): measured 1.6–2.0e-11 of the largest exchange, with the coarse
+    // correction or Jacobi alone; held to 1e-10. (The reference's own error is below 1e-14: a
+    // step of iterative refinement in long double moves it by 2e-15.) The closure recomputed
+    // from K' carries the rounding of λ_u + λ_j, and λ is large along the near-null vectors:
+    // measured 2–3e-10 of the weight (6e-10–1e-9 with Jacobi alone); held to 2e-9. Neither
+    // touches the energy balance: G' is symmetric to the last bit whatever λ is.
+    const ReciprocityReport report =
+        check_against_reference(floor_above_ground(40, seed), "seed " + std::to_string(seed), 1e-10, 2e-9);
+    // Each element and its floor nodes form one aggregate (the floor nodes' exchanges with the
+    // element's nodes are strong), whose signed indicator is the local near-null vector, and the
+    // coarse solve takes those and their slow variation out. Measured: 27–28 iterations; with
+    // Jacobi alone (the coarse space left out) 346–363.
+    CHECK(report.coarse_aggregates >= 40);
+    CHECK(report.iterations <= 40);
+  }
 }
 
 TEST_CASE("reciprocity: no unknowns, and only dead ones, leave the rows as given") {
