@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numbers>
 #include <string>
@@ -405,11 +406,21 @@ class Transport {
       // takes the other's panes as opaque) and are added below by the pair's own.
       thread_local std::vector<std::pair<std::size_t, std::size_t>> pairs;
       series_pairs(x, poly, reach, pairs);
+      // Triples of groups each two of which are such a pair: a line may cross panes of all three
+      // (a partition, another, then the façade), added likewise by the triple's own view.
+      thread_local std::vector<std::array<std::size_t, 3>> triples;
+      series_triples(pairs, triples);
       thread_local std::vector<std::vector<std::array<double, 3>>> raw[N];  // [m][g][i]: E(through g) per element
+      thread_local std::vector<std::vector<std::array<double, 3>>> raw_pair[N];  // [m][p][i]: E(through pair p)
       if (!pairs.empty())
         for (std::size_t m = 0; m < N; ++m) {
           raw[m].resize(groups_.size());
           for (auto& r : raw[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
+        }
+      if (!triples.empty())
+        for (std::size_t m = 0; m < N; ++m) {
+          raw_pair[m].resize(pairs.size());
+          for (auto& r : raw_pair[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
         }
       for (std::size_t g = 0; g < groups_.size(); ++g) {
         bool may_cross = false;
@@ -460,8 +471,8 @@ class Transport {
       // Through panes of two groups: with both transparent, what neither alone nor nothing
       // shows, E(g, h) − E(g) − E(h) + E(none), under T_g·T_h (each at the centroid's direction
       // about its own pane; the product's spread over the vertices' directions as for one).
-      // Three or more groups on one line are not counted (README, "Known limits").
-      for (const auto& [g, h] : pairs) {
+      for (std::size_t p = 0; p < pairs.size(); ++p) {
+        const auto [g, h] = pairs[p];
         const PairView& view = pair_view(g, h);
         VisibilityOptions pair_opt = opt;
         pair_opt.excluded_occluder = view_occluder(view.index, surf.occluder);
@@ -471,7 +482,11 @@ class Transport {
         if (both.empty()) continue;
         const bool both_free = counters.pairs_clipped == clipped_p;
         // Seen whole, as inside: the four regions are one, nothing passes both groups.
-        if (both_free && inside_free && !inside.empty()) continue;
+        if (both_free && inside_free && !inside.empty()) {
+          if (!triples.empty())
+            for (std::size_t m = 0; m < N; ++m) raw_pair[m][p] = inside_cs[m];
+          continue;
+        }
         const ApertureGroup &gg = groups_[g], &gh = groups_[h];
         const auto product = [&](const Vec3& u) { return gg.at(dot(u, gg.pane_normal)) * gh.at(dot(u, gh.pane_normal)); };
         for (std::size_t m = 0; m < N; ++m) {
@@ -483,6 +498,7 @@ class Transport {
             element_region(both, both_free, el, x, n, part);
             if (part.empty()) continue;
             auto c = element_irradiance_coefficients(part, el, x, n);
+            if (!triples.empty()) raw_pair[m][p][i] = c;
             const auto [t, spread] = element_transmittance(el, x, product);
             const std::array<double, 3>& c_in = inside_cs[m][i];
             for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - raw[m][g][i][k] - raw[m][h][i][k] + c_in[k]);
@@ -490,7 +506,62 @@ class Transport {
           }
         }
       }
+      // Through panes of three groups: E(g, h, k) − the three pairs' + the three groups' − E(none)
+      // (inclusion and exclusion: what passes all three and no other), under T_g·T_h·T_k. Four
+      // or more groups on one line are not counted (README, "Known limits").
+      for (const auto& triple : triples) {
+        const PairView& view = triple_view(triple);
+        VisibilityOptions triple_opt = opt;
+        triple_opt.excluded_occluder = view_occluder(view.index, surf.occluder);
+        triple_opt.receiver_occluder = view_occluder(view.index, receiver);
+        const std::uint64_t clipped_3 = counters.pairs_clipped;
+        const SphericalRegion all3 = view.engine->visible_region(x, n, s, counters, triple_opt);
+        if (all3.empty()) continue;
+        const bool all3_free = counters.pairs_clipped == clipped_3;
+        if (all3_free && inside_free && !inside.empty()) continue;  // the eight regions are one
+        const auto pair_at = [&](std::size_t a, std::size_t b) {
+          return std::size_t(std::find(pairs.begin(), pairs.end(), std::pair{a, b}) - pairs.begin());
+        };
+        const auto [g, h, k3] = triple;
+        const std::size_t gh = pair_at(g, h), gk = pair_at(g, k3), hk = pair_at(h, k3);
+        const auto product = [&](const Vec3& u) {
+          double t = 1;
+          for (const std::size_t q : triple) t *= groups_[q].at(dot(u, groups_[q].pane_normal));
+          return t;
+        };
+        for (std::size_t m = 0; m < N; ++m) {
+          const RadiosityMesh& mesh = *meshes[m];
+          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
+          for (std::size_t i = 0; i < elements.size(); ++i) {
+            const RadiosityElement& el = mesh.elements[elements[i]];
+            thread_local SphericalRegion part;
+            element_region(all3, all3_free, el, x, n, part);
+            if (part.empty()) continue;
+            auto c = element_irradiance_coefficients(part, el, x, n);
+            const auto [t, spread] = element_transmittance(el, x, product);
+            const std::array<double, 3>& c_in = inside_cs[m][i];
+            for (int k = 0; k < 3; ++k)
+              c[k] = t * (c[k] - raw_pair[m][gh][i][k] - raw_pair[m][gk][i][k] - raw_pair[m][hk][i][k] + raw[m][g][i][k] +
+                          raw[m][h][i][k] + raw[m][k3][i][k] - c_in[k]);
+            sink(m, elements[i], side, c, true, spread);
+          }
+        }
+      }
     }
+  }
+
+  // The triples (g < h < k) all three of whose pairs are in `pairs` (series_pairs, sorted):
+  // a line crosses panes of three groups only if it crosses panes of each two of them.
+  static void series_triples(const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                             std::vector<std::array<std::size_t, 3>>& out) {
+    out.clear();
+    if (pairs.size() < 3) return;
+    const auto has = [&](std::size_t a, std::size_t b) {
+      return std::find(pairs.begin(), pairs.end(), std::pair{a, b}) != pairs.end();
+    };
+    for (const auto& [g, h] : pairs)
+      for (const auto& [a, k] : pairs)
+        if (a == h && has(g, k)) out.push_back({g, h, k});
   }
 
   // The pairs of groups (g < h) with panes a of g and b of h that may both stand between x and
@@ -711,6 +782,20 @@ class Transport {
     std::call_once(view.built, [&] { view.engine = std::make_unique<VisibilityEngine>(view_engine({g, h}, view.index)); });
     return view;
   }
+  // The same past the panes of three groups (series_triples), kept by the triple.
+  const PairView& triple_view(const std::array<std::size_t, 3>& groups) const {
+    PairView* view = nullptr;
+    {
+      const std::lock_guard lock(triple_views_mutex_);
+      std::unique_ptr<PairView>& slot = triple_views_[groups];
+      if (!slot) slot = std::make_unique<PairView>();
+      view = slot.get();
+    }
+    std::call_once(view->built, [&] {
+      view->engine = std::make_unique<VisibilityEngine>(view_engine({groups.begin(), groups.end()}, view->index));
+    });
+    return *view;
+  }
 
   // Occluder `i` of `inside_` and the sky box (a pane: occluders + aperture) as a view's engine
   // lists it: the opaque polygons keep their index, a pane has another or is none (transparent).
@@ -737,6 +822,8 @@ class Transport {
   std::vector<VisibilityEngine> through_;  // per aperture group
   std::vector<std::vector<std::size_t>> through_index_;  // per group and aperture: its occluder index there
   mutable std::vector<PairView> pair_views_;              // per pair of groups g < h: at h(h − 1)/2 + g
+  mutable std::map<std::array<std::size_t, 3>, std::unique_ptr<PairView>> triple_views_;  // built on first use
+  mutable std::mutex triple_views_mutex_;
   std::vector<Vec3> pane_normals_, pane_points_;          // per aperture: its plane
   std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;

@@ -813,6 +813,46 @@ TEST_CASE("a pane in series with the window (an interior partition): what lies b
   }
 }
 
+TEST_CASE("panes of three kinds in series (two partitions and the window): what lies beyond all three passes with the three transmittances") {
+  // The room, wall and sensors of the case above, with a second partition (τ 0.25) at y = 1.25:
+  // three groups of panes, every line from the sensors to the wall crossing one pane of each.
+  // Its ERC must be exactly 0.5 × 0.25 of the window's alone (1e-9: the regions' moments found
+  // by other engines). Before triples of groups had a view of their own the wall seen through
+  // all three was lost (ERC 0).
+  const double w = 2;
+  Scene scene;
+  scene.occluders = cube_room(false);
+  scene.occluders.push_back(test::polygon({{-2, -2, 0}, {4, -2, 0}, {4, -2, 4}, {-2, -2, 4}}, "wall beyond"));
+  const std::vector<double> reflectance{0, 0, 0, 0, 0, 0, 0.5};
+  const Aperture window{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 0.8};
+  const Aperture partition{test::polygon({{0, 1, 0}, {0, 1, w}, {w, 1, w}, {w, 1, 0}}, "partition"), 0.5};
+  const Aperture second{test::polygon({{0, 1.25, 0}, {0, 1.25, w}, {w, 1.25, w}, {w, 1.25, 0}}, "second partition"), 0.25};
+  SensorGrid grid;
+  grid.name = "g";
+  grid.sensors = {{{1.0, 1.5, 1.1}, {0, -1, 0}}, {{0.7, 1.8, 0.9}, normalized(Vec3{0.2, -1, 0.3})}};
+  ReflectionOptions o;
+  o.element_size = 1;
+  o.max_refinements = 0;
+  o.ground_reflectance = 0;
+  const auto solve = [&](std::vector<Aperture> apertures) {
+    Scene s = scene;
+    s.apertures = std::move(apertures);
+    const VisibilityEngine engine(s, GeometryMode::exact);
+    return reflected_components(s, reflectance, engine, {&grid}, o).grids[0];
+  };
+  const SensorReflections window_alone = solve({window});
+  // Listed in either order: the groups' numbering must not matter.
+  for (const auto& apertures : {std::vector<Aperture>{second, partition, window}, std::vector<Aperture>{window, partition, second}}) {
+    const SensorReflections behind_both = solve(apertures);
+    for (std::size_t i = 0; i < grid.sensors.size(); ++i) {
+      INFO("sensor " << i << ": ERC " << behind_both.erc_percent[i] << " against an eighth of " << window_alone.erc_percent[i]);
+      CHECK(window_alone.erc_percent[i] > 0.1);
+      CHECK(behind_both.erc_percent[i] == Approx(0.125 * window_alone.erc_percent[i]).epsilon(1e-9));
+      CHECK(behind_both.irc_percent[i] == 0);
+    }
+  }
+}
+
 TEST_CASE("window room: an adjacent room's face behind a wall, back to back in its plane, changes nothing") {
   // Honeybee writes an interior wall twice, once per room, as coincident polygons facing away from
   // each other. Here the north wall gets such a twin facing out: its back lies on the wall's front
