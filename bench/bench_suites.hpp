@@ -27,6 +27,9 @@ struct BenchOptions {
     int bounces = 16;
     double ground_reflectance = 0.2;
     std::uint64_t seed = 1;
+    // A sun (degrees; azimuth clockwise from +y) and its direct normal irradiance over the sky's
+    // unobstructed horizontal one (0: none).
+    double sun_zenith = 0, sun_azimuth = 0, sun_normal = 0;
   } trace;
 };
 

@@ -1,12 +1,13 @@
 // `daylit bench trace`: the path tracer (path_tracer.hpp) on the user's own scene, the independent
 // reference that `df --components all` is compared with on scenes outside the repository: the same
-// model options as df, the CIE overcast sky, per sensor SC, ERC, IRC and DF with their standard
-// errors, in df's columns.
+// model options as df, the CIE overcast sky (and a sun, where given), per sensor SC, ERC, IRC and DF
+// with their standard errors, in df's columns, then the sun's direct part.
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <numbers>
 
 #include <unistd.h>
 
@@ -33,12 +34,16 @@ int run_bench_trace(const BenchOptions& opt) {
   o.max_bounces = opt.trace.bounces;
   o.ground_reflectance = opt.trace.ground_reflectance;
   o.seed = opt.trace.seed;
+  // The sun's direction from zenith and azimuth (clockwise from +y, north without a site).
+  const double zenith = opt.trace.sun_zenith * std::numbers::pi / 180, azimuth = opt.trace.sun_azimuth * std::numbers::pi / 180;
+  o.sun = {std::sin(zenith) * std::sin(azimuth), std::sin(zenith) * std::cos(azimuth), std::cos(zenith)};
+  o.sun_normal = opt.trace.sun_normal;
   const std::filesystem::path dir(opt.out);
   std::filesystem::create_directories(dir);
   const std::string csv = (dir / "trace.csv").string();
   StagedOutputs outputs;
   std::ofstream f(outputs.stage(csv));
-  f << "grid,index,x,y,z,dx,dy,dz,sc_percent,sc_se,erc_percent,erc_se,irc_percent,irc_se,df_percent,df_se\n";
+  f << "grid,index,x,y,z,dx,dy,dz,sc_percent,sc_se,erc_percent,erc_se,irc_percent,irc_se,df_percent,df_se,sun_percent,sun_se\n";
   const auto start = std::chrono::steady_clock::now();
   bench::StatusLine status(!opt.quiet && isatty(2));
   for (const SensorGrid& grid : model.grids) {
@@ -48,10 +53,10 @@ int run_bench_trace(const BenchOptions& opt) {
     for (std::size_t i = 0; i < traced.size(); ++i) {
       const Sensor& s = grid.sensors[i];
       const PathTracedSensor& t = traced[i];
-      f << fmt::format("{},{},{},{},{},{},{},{},{:.10g},{:.3g},{:.10g},{:.3g},{:.10g},{:.3g},{:.10g},{:.3g}\n", grid.name,
-                       grid.first + i, s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z,
-                       t.sc.value, t.sc.standard_error, t.erc.value, t.erc.standard_error, t.irc.value,
-                       t.irc.standard_error, t.df.value, t.df.standard_error);
+      f << fmt::format("{},{},{},{},{},{},{},{},{:.10g},{:.3g},{:.10g},{:.3g},{:.10g},{:.3g},{:.10g},{:.3g},{:.10g},{:.3g}\n",
+                       grid.name, grid.first + i, s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y,
+                       s.normal.z, t.sc.value, t.sc.standard_error, t.erc.value, t.erc.standard_error, t.irc.value,
+                       t.irc.standard_error, t.df.value, t.df.standard_error, t.sun.value, t.sun.standard_error);
     }
   }
   status.clear();

@@ -22,6 +22,9 @@ constexpr double kPi = std::numbers::pi;
 // header: what it costs).
 constexpr double kRelativeOffset = 1e-9;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// The cosine of the sun's angular radius (0.533° across, as daylit's illuminance takes it:
+// simulation/illuminance.hpp, kSunHalfAngleDeg).
+const double kCosSunRadius = std::cos(0.2665 * kPi / 180);
 
 Vec3 component_min(const Vec3& a, const Vec3& b) noexcept { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 Vec3 component_max(const Vec3& a, const Vec3& b) noexcept { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
@@ -331,7 +334,34 @@ struct Accumulator {
 class Tracer {
  public:
   Tracer(const TracerScene& s, const PathTracerOptions& o)
-      : s_(s), o_(o), ground_(o.ground_reflectance * unobstructed_horizontal_irradiance(o.sky) / kPi) {}
+      : s_(s),
+        o_(o),
+        sun_irradiance_(o.sun_normal * unobstructed_horizontal_irradiance(o.sky)),
+        ground_(o.ground_reflectance *
+                (unobstructed_horizontal_irradiance(o.sky) + sun_irradiance_ * std::max(o.sun.z, 0.0)) / kPi) {
+    if (sun_irradiance_ > 0) {
+      sun_ = normalized(o.sun);
+      orthonormal_basis(sun_, sun_e1_, sun_e2_);
+    }
+  }
+
+  // A direction uniform over the sun's disk (solid angle: cos θ uniform in [cos ρ, 1]).
+  Vec3 sun_direction(Xoshiro256& rng) const noexcept {
+    const double cos_t = 1 - rng.uniform() * (1 - kCosSunRadius), sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
+    const double phi = 2 * kPi * rng.uniform();
+    return normalized(cos_t * sun_ + sin_t * (std::cos(phi) * sun_e1_ + std::sin(phi) * sun_e2_));
+  }
+
+  // The sun's irradiance on (x, n) along one direction of its disk, through the apertures; 0
+  // where an occluder or a reflecting pane's event stops it. `from`: the object x lies on.
+  double sun_irradiance(const Vec3& x, const Vec3& n, std::uint32_t from, Xoshiro256& rng) const noexcept {
+    if (!(sun_irradiance_ > 0)) return 0;
+    const Vec3 d = sun_direction(rng);
+    const double cos_x = dot(n, d);
+    if (!(cos_x > 0)) return 0;
+    const Walk w = walk(s_, x, d, from, rng);
+    return w.surface == kNone ? sun_irradiance_ * cos_x * w.transmittance : 0.0;
+  }
 
   double environment(const Vec3& d) const noexcept { return d.z > 0 ? sky_relative_luminance(o_.sky, d) : (d.z < 0 ? ground_ : 0.0); }
 
@@ -343,8 +373,9 @@ class Tracer {
   }
 
   // One path: fills sc, erc[k], irc[k] (irradiance units, without the 100/E_out).
-  void path(const Sensor& sensor, double xi1, double xi2, Xoshiro256& rng, double& sc, std::vector<double>& erc,
+  void path(const Sensor& sensor, double xi1, double xi2, Xoshiro256& rng, double& sc, double& sun, std::vector<double>& erc,
             std::vector<double>& irc) const noexcept {
+    sun += sun_irradiance(sensor.position, sensor.normal, kNone, rng);
     const Vec3 d0 = cosine_direction(sensor.normal, xi1, xi2);
     const Walk first = walk(s_, sensor.position, d0, kNone, rng);
     double beta = kPi * first.transmittance;  // E ≈ π·L(d) under cosine sampling
@@ -363,6 +394,8 @@ class Tracer {
       const Vec3 n = dot(info.normal, incoming) < 0 ? info.normal : -1.0 * info.normal;
       const Vec3 origin = x + s_.offset * n;
       const double f = info.reflectance / kPi;  // Lambertian BRDF
+      // Next-event estimation towards the sun.
+      out[k] += beta * f * sun_irradiance(origin, n, surface, rng);
       // Next-event estimation through an aperture drawn by area.
       if (!s_.apertures.empty() && s_.aperture_area > 0) {
         const std::uint32_t a = std::uint32_t(pick(s_.aperture_cumulative, rng.uniform()));
@@ -408,7 +441,9 @@ class Tracer {
  private:
   const TracerScene& s_;
   const PathTracerOptions& o_;
+  double sun_irradiance_;  // direct normal, in the sky's units
   double ground_;
+  Vec3 sun_{0, 0, 1}, sun_e1_{1, 0, 0}, sun_e2_{0, 1, 0};
 };
 
 }  // namespace
@@ -419,6 +454,10 @@ std::vector<PathTracedSensor> path_trace(const Scene& scene, const std::vector<S
   if (options.max_bounces < 0) throw Error("path tracer: the bounce count must be at least 0");
   if (!(options.ground_reflectance >= 0 && options.ground_reflectance <= 1))
     throw Error("path tracer: the ground reflectance must lie in [0, 1]");
+  if (!(options.sun_normal >= 0) || !std::isfinite(options.sun_normal))
+    throw Error("path tracer: the sun's direct normal irradiance must be a number >= 0");
+  if (options.sun_normal > 0 && !(norm(options.sun) > 0 && options.sun.z > 0))
+    throw Error("path tracer: the sun must be above the horizon");
   const TracerScene s = build(scene);
   const Tracer tracer(s, options);
   const long n = options.samples_per_sensor;
@@ -432,16 +471,16 @@ std::vector<PathTracedSensor> path_trace(const Scene& scene, const std::vector<S
     // A generator per sensor, seeded from the run's seed and the sensor's index (SplitMix64
     // inside Xoshiro256 decorrelates neighbouring seeds).
     Xoshiro256 rng(options.seed * 0x9e3779b97f4a7c15ULL + std::uint64_t(i));
-    Accumulator sc, erc, irc, df;
+    Accumulator sc, sun, erc, irc, df;
     std::vector<Accumulator> erc_k(bounces), irc_k(bounces);
     std::vector<double> e(bounces), r(bounces);
     for (long a = 0; a < nx; ++a)
       for (long b = 0; b < ny; ++b) {
-        double c = 0;
+        double c = 0, direct_sun = 0;
         std::fill(e.begin(), e.end(), 0.0);
         std::fill(r.begin(), r.end(), 0.0);
         const double xi1 = (double(a) + rng.uniform()) / double(nx), xi2 = (double(b) + rng.uniform()) / double(ny);
-        tracer.path(sensors[i], xi1, xi2, rng, c, e, r);
+        tracer.path(sensors[i], xi1, xi2, rng, c, direct_sun, e, r);
         double e_sum = 0, r_sum = 0;
         for (std::size_t k = 0; k < bounces; ++k) {
           erc_k[k].add(e[k]);
@@ -450,12 +489,14 @@ std::vector<PathTracedSensor> path_trace(const Scene& scene, const std::vector<S
           r_sum += r[k];
         }
         sc.add(c);
+        sun.add(direct_sun);
         erc.add(e_sum);
         irc.add(r_sum);
-        df.add(c + e_sum + r_sum);
+        df.add(c + direct_sun + e_sum + r_sum);
       }
     PathTracedSensor& out = results[i];
     out.sc = sc.estimate(n, scale);
+    out.sun = sun.estimate(n, scale);
     out.erc = erc.estimate(n, scale);
     out.irc = irc.estimate(n, scale);
     out.df = df.estimate(n, scale);

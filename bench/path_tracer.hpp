@@ -26,6 +26,11 @@
 //   (the far ground's own reflection not counted: ERC bounce 0 is the far ground seen through the
 //   windows).
 //
+// The sun, where given, by next-event estimation alone (the environment the paths reach has no
+// sun in it, so nothing is counted twice): at the sensor and at every surface vertex a direction
+// uniform over the disk's cone, its shadow ray walked through the apertures to the environment,
+// E_sun (n·d) T. A shadow edge is then seen with the disk's penumbra, as daylit cuts the disk.
+//
 // Estimator, per sensor: the first direction by stratified cosine sampling (nx × ny strata of the
 // unit square, one jittered sample each, Malley's method). At every surface vertex (1 ≤ k ≤ B):
 // next-event estimation towards the apertures (one aperture drawn with probability ∝ area, a point
@@ -63,6 +68,13 @@ struct PathTracerOptions {
   double ground_reflectance = 0.2;  // ρ_g of the far ground, in [0, 1]
   std::uint64_t seed = 1;
   SkyModel sky = SkyModel::cie_overcast;
+  // The sun: a uniform disk 0.533° across about `sun` (unit, towards it, above the horizon), of
+  // direct normal irradiance `sun_normal` times the sky's unobstructed horizontal irradiance
+  // E_out (0: no sun). Its light at the sensor is `sun`; reflected, it joins ERC or IRC as the
+  // sky's does; the far ground's luminance is then ρ_g (E_out + sun_normal E_out sun_z)/π (sky
+  // and sun, as daylit illuminance takes it).
+  Vec3 sun{0, 0, 1};
+  double sun_normal = 0;
 };
 
 // A Monte Carlo estimate in percent of E_out, with its standard error (same unit).
@@ -72,7 +84,8 @@ struct TracedEstimate {
 };
 
 struct PathTracedSensor {
-  TracedEstimate sc, erc, irc, df;  // df = sc + erc + irc, its standard error from the same paths
+  TracedEstimate sc, erc, irc, df;  // df = sc + sun + erc + irc, its standard error from the same paths
+  TracedEstimate sun;               // the sun's disk seen directly (0 without a sun)
   // Index k = 0 … B: the part reached after exactly k surface reflections (irc_by_bounce[0] = 0;
   // the sky component is bounce 0 only).
   std::vector<TracedEstimate> erc_by_bounce, irc_by_bounce;

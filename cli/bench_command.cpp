@@ -127,7 +127,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
             "the apertures, seeded) on --scene, --apertures and --grid as df reads them, under the CIE overcast sky:\n"
             "an independent reference for `df --components all`. Writes trace.csv (df's first columns, then each\n"
             "component in percent and its standard error; the standard errors are conservative). Light beyond\n"
-            "--bounces reflections is not estimated. Cost: about 0.1 ms per path and sensor on a room.",
+            "--bounces reflections is not estimated. Cost: about 0.1 ms per path and sensor on a room. With a sun\n"
+            "(--sun-zenith, --sun-azimuth, --direct-normal-ratio) also its direct light (sun_percent) and its\n"
+            "reflections in ERC and IRC, all in percent of the sky's E_out: the reference for\n"
+            "`illuminance --components all` with --sky cie-overcast and --direct-normal = ratio x --diffuse-horizontal.",
             run_bench_trace);
   {
     BenchOptions& o = *suites->back().options;
@@ -142,6 +145,14 @@ std::function<int()> add_bench_command(CLI::App& app) {
     c.add_option("--ground-reflectance", o.trace.ground_reflectance, "Reflectance of the far ground (default 0.2)")
         ->check(number_in(0.0, 1.0));
     c.add_option("--seed", o.trace.seed, "Seed of the generators (default 1)");
+    c.add_option("--sun-zenith", o.trace.sun_zenith, "A sun's zenith angle (degrees, below 90; with --direct-normal-ratio)")
+        ->check(number_in(0.0, 89.99));
+    c.add_option("--sun-azimuth", o.trace.sun_azimuth, "The sun's azimuth (degrees clockwise from +y, as illuminance without --site)")
+        ->check(number_in(-360.0, 360.0));
+    c.add_option("--direct-normal-ratio", o.trace.sun_normal,
+                 "The sun's direct normal illuminance over the sky's unobstructed horizontal one (default 0: no sun); "
+                 "the sun then adds sun_percent and its reflections, the far ground takes its horizontal part")
+        ->check(number_in(0.0, 1e4));
   }
   return [suites] {
     for (const Suite& s : *suites)

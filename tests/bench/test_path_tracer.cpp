@@ -105,6 +105,40 @@ TEST_CASE("path tracer: outdoors, an upward sensor sees the sky alone and a down
   }
 }
 
+TEST_CASE("path tracer: the sun outdoors, on an open sensor, in the far ground and on a lit ground surface") {
+  // The sun 40° from the zenith, its direct normal irradiance 3 E_out. An upward sensor in the
+  // open gets 300 cos 40° % of it directly (the disk's mean cosine about its centre is
+  // 1 − ρ²/4 ≈ 1 − 5e-6: within 1e-4), nothing reflected; a downward one the far ground, whose
+  // luminance now carries the sun's horizontal part: 100 ρ_g (1 + 3 cos 40°) %, on every path.
+  const double ratio = 3, zenith = 40 * std::numbers::pi / 180;
+  PathTracerOptions o = options(4096, 4, SkyModel::cie_overcast, 0.3);
+  o.sun = {0, std::sin(zenith), std::cos(zenith)};
+  o.sun_normal = ratio;
+  const Scene empty;
+  const auto r = path_trace(empty, {{{0, 0, 1}, {0, 0, 1}}, {{0, 0, 1}, {0, 0, -1}}}, o);
+  CHECK(r[0].sun.value == Approx(100 * ratio * std::cos(zenith)).epsilon(1e-4));
+  CHECK(within(r[0].sc, 100));
+  CHECK(r[0].erc.value == 0);
+  CHECK(r[0].irc.value == 0);
+  CHECK(r[0].df.value == Approx(r[0].sc.value + r[0].sun.value).epsilon(1e-12));
+  CHECK(r[1].sun.value == 0);
+  CHECK(r[1].erc.value == Approx(30 * (1 + ratio * std::cos(zenith))).epsilon(1e-12));
+  // A ground surface of ρ = 0.3, 10 km square, lit by sky and sun: exitance ρ (E_out + E_sun
+  // cos 40°), the far ground's luminance beyond its edge, so downward sensors 1 m and 50 m up
+  // (their shadows points) see 100 ρ (1 + 3 cos 40°) % in all, the sun's part by next-event
+  // estimation at the ground.
+  Scene ground;
+  ground.materials["ground"] = rc::grey_plastic("ground", 0.3);
+  ground.occluders.push_back(rc::rectangle({-5000, -5000, 0}, {10000, 0, 0}, {0, 10000, 0}, "ground", "ground"));
+  const auto g = path_trace(ground, {{{0, 0, 1}, {0, 0, -1}}, {{0, 0, 50}, {0, 0, -1}}}, o);
+  for (const auto& t : g) {
+    INFO("traced " << t.df.value << " ± " << t.df.standard_error);
+    CHECK(within(t.df, 30 * (1 + ratio * std::cos(zenith))));
+    CHECK(t.df.standard_error < 0.5);
+    CHECK(t.sun.value == 0);
+  }
+}
+
 TEST_CASE("path tracer: a closed box without apertures is dark at every bounce (no leaks at edges and corners)") {
   Scene box;
   box.materials["white"] = rc::grey_plastic("white", 0.9);
