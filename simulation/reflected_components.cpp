@@ -422,6 +422,33 @@ class Transport {
           raw_pair[m].resize(pairs.size());
           for (auto& r : raw_pair[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
         }
+      // What a view past the panes of several groups (pair_view, triple_view) shows of the
+      // surface; `free`: nothing in it was clipped.
+      const auto seen_past = [&](const PairView& view, bool& free) {
+        VisibilityOptions past = opt;
+        past.excluded_occluder = view_occluder(view.index, surf.occluder);
+        past.receiver_occluder = view_occluder(view.index, receiver);
+        const std::uint64_t clipped = counters.pairs_clipped;
+        SphericalRegion region = view.engine->visible_region(x, n, s, counters, past);
+        free = counters.pairs_clipped == clipped;
+        return region;
+      };
+      // Every element of the surface (in each mesh) of which `region` shows some part:
+      // f(m, i, element index, element, c), c its coefficients over that part (`free`: the region
+      // is the surface's whole, unclipped).
+      const auto for_each_seen = [&](const SphericalRegion& region, bool free, auto&& f) {
+        for (std::size_t m = 0; m < N; ++m) {
+          const RadiosityMesh& mesh = *meshes[m];
+          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
+          for (std::size_t i = 0; i < elements.size(); ++i) {
+            const RadiosityElement& el = mesh.elements[elements[i]];
+            thread_local SphericalRegion part;
+            element_region(region, free, el, x, n, part);
+            if (part.empty()) continue;
+            f(m, i, elements[i], el, element_irradiance_coefficients(part, el, x, n));
+          }
+        }
+      };
       for (std::size_t g = 0; g < groups_.size(); ++g) {
         bool may_cross = false;
         for (std::size_t a : groups_[g].apertures) may_cross |= reach.meets(aperture_boxes_[a], 1e-9 * scale_);
@@ -440,47 +467,34 @@ class Transport {
           continue;
         }
         const ApertureGroup& group = groups_[g];
-        for (std::size_t m = 0; m < N; ++m) {
-          const RadiosityMesh& mesh = *meshes[m];
-          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
-          for (std::size_t i = 0; i < elements.size(); ++i) {
-            const RadiosityElement& el = mesh.elements[elements[i]];
-            thread_local SphericalRegion part;
-            element_region(through, through_free, el, x, n, part);
-            if (part.empty()) continue;
-            auto c = element_irradiance_coefficients(part, el, x, n);
-            // What is seen inside, by the same function as what is seen through, so that where the
-            // two regions are the same (nothing of the group in the way) the difference is 0
-            // exactly: inside_c[i] where it came from that function, again where the shared edges
-            // gave it.
-            const std::array<double, 3> c_in =
-                !inside_free || inside.empty()
-                    ? inside_cs[m][i]
-                    : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
-            const ElementTransmittance ts =
-                group.angular.empty()
-                    ? ElementTransmittance{group.transmittance, 0}
-                    : element_transmittance(el, x, [&](const Vec3& u) { return group.at(dot(u, group.pane_normal)); });
-            const double t = ts.value, spread = ts.spread;
-            if (!pairs.empty()) raw[m][g][i] = c;
-            for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
-            sink(m, elements[i], side, c, true, spread);
-          }
-        }
+        for_each_seen(through, through_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
+                                                 std::array<double, 3> c) {
+          // What is seen inside, by the same function as what is seen through, so that where the
+          // two regions are the same (nothing of the group in the way) the difference is 0
+          // exactly: inside_c[i] where it came from that function, again where the shared edges
+          // gave it.
+          const std::array<double, 3> c_in =
+              !inside_free || inside.empty()
+                  ? inside_cs[m][i]
+                  : element_irradiance_coefficients(element_region(inside, true, el, x, n), el, x, n);
+          const ElementTransmittance ts =
+              group.angular.empty()
+                  ? ElementTransmittance{group.transmittance, 0}
+                  : element_transmittance(el, x, [&](const Vec3& u) { return group.at(dot(u, group.pane_normal)); });
+          const double t = ts.value, spread = ts.spread;
+          if (!pairs.empty()) raw[m][g][i] = c;
+          for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - c_in[k]);
+          sink(m, e, side, c, true, spread);
+        });
       }
       // Through panes of two groups: with both transparent, what neither alone nor nothing
       // shows, E(g, h) − E(g) − E(h) + E(none), under T_g·T_h (each at the centroid's direction
       // about its own pane; the product's spread over the vertices' directions as for one).
       for (std::size_t p = 0; p < pairs.size(); ++p) {
         const auto [g, h] = pairs[p];
-        const PairView& view = pair_view(g, h);
-        VisibilityOptions pair_opt = opt;
-        pair_opt.excluded_occluder = view_occluder(view.index, surf.occluder);
-        pair_opt.receiver_occluder = view_occluder(view.index, receiver);
-        const std::uint64_t clipped_p = counters.pairs_clipped;
-        const SphericalRegion both = view.engine->visible_region(x, n, s, counters, pair_opt);
+        bool both_free = false;
+        const SphericalRegion both = seen_past(pair_view(g, h), both_free);
         if (both.empty()) continue;
-        const bool both_free = counters.pairs_clipped == clipped_p;
         // Seen whole, as inside: the four regions are one, nothing passes both groups.
         if (both_free && inside_free && !inside.empty()) {
           if (!triples.empty())
@@ -489,35 +503,22 @@ class Transport {
         }
         const ApertureGroup &gg = groups_[g], &gh = groups_[h];
         const auto product = [&](const Vec3& u) { return gg.at(dot(u, gg.pane_normal)) * gh.at(dot(u, gh.pane_normal)); };
-        for (std::size_t m = 0; m < N; ++m) {
-          const RadiosityMesh& mesh = *meshes[m];
-          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
-          for (std::size_t i = 0; i < elements.size(); ++i) {
-            const RadiosityElement& el = mesh.elements[elements[i]];
-            thread_local SphericalRegion part;
-            element_region(both, both_free, el, x, n, part);
-            if (part.empty()) continue;
-            auto c = element_irradiance_coefficients(part, el, x, n);
-            if (!triples.empty()) raw_pair[m][p][i] = c;
-            const auto [t, spread] = element_transmittance(el, x, product);
-            const std::array<double, 3>& c_in = inside_cs[m][i];
-            for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - raw[m][g][i][k] - raw[m][h][i][k] + c_in[k]);
-            sink(m, elements[i], side, c, true, spread);
-          }
-        }
+        for_each_seen(both, both_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
+                                           std::array<double, 3> c) {
+          if (!triples.empty()) raw_pair[m][p][i] = c;
+          const auto [t, spread] = element_transmittance(el, x, product);
+          const std::array<double, 3>& c_in = inside_cs[m][i];
+          for (int k = 0; k < 3; ++k) c[k] = t * (c[k] - raw[m][g][i][k] - raw[m][h][i][k] + c_in[k]);
+          sink(m, e, side, c, true, spread);
+        });
       }
       // Through panes of three groups: E(g, h, k) − the three pairs' + the three groups' − E(none)
       // (inclusion and exclusion: what passes all three and no other), under T_g·T_h·T_k. Four
       // or more groups on one line are not counted (README, "Known limits").
       for (const auto& triple : triples) {
-        const PairView& view = triple_view(triple);
-        VisibilityOptions triple_opt = opt;
-        triple_opt.excluded_occluder = view_occluder(view.index, surf.occluder);
-        triple_opt.receiver_occluder = view_occluder(view.index, receiver);
-        const std::uint64_t clipped_3 = counters.pairs_clipped;
-        const SphericalRegion all3 = view.engine->visible_region(x, n, s, counters, triple_opt);
+        bool all3_free = false;
+        const SphericalRegion all3 = seen_past(triple_view(triple), all3_free);
         if (all3.empty()) continue;
-        const bool all3_free = counters.pairs_clipped == clipped_3;
         if (all3_free && inside_free && !inside.empty()) continue;  // the eight regions are one
         const auto pair_at = [&](std::size_t a, std::size_t b) {
           return std::size_t(std::find(pairs.begin(), pairs.end(), std::pair{a, b}) - pairs.begin());
@@ -529,23 +530,15 @@ class Transport {
           for (const std::size_t q : triple) t *= groups_[q].at(dot(u, groups_[q].pane_normal));
           return t;
         };
-        for (std::size_t m = 0; m < N; ++m) {
-          const RadiosityMesh& mesh = *meshes[m];
-          const std::vector<std::size_t>& elements = mesh.surfaces[s].elements;
-          for (std::size_t i = 0; i < elements.size(); ++i) {
-            const RadiosityElement& el = mesh.elements[elements[i]];
-            thread_local SphericalRegion part;
-            element_region(all3, all3_free, el, x, n, part);
-            if (part.empty()) continue;
-            auto c = element_irradiance_coefficients(part, el, x, n);
-            const auto [t, spread] = element_transmittance(el, x, product);
-            const std::array<double, 3>& c_in = inside_cs[m][i];
-            for (int k = 0; k < 3; ++k)
-              c[k] = t * (c[k] - raw_pair[m][gh][i][k] - raw_pair[m][gk][i][k] - raw_pair[m][hk][i][k] + raw[m][g][i][k] +
-                          raw[m][h][i][k] + raw[m][k3][i][k] - c_in[k]);
-            sink(m, elements[i], side, c, true, spread);
-          }
-        }
+        for_each_seen(all3, all3_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
+                                           std::array<double, 3> c) {
+          const auto [t, spread] = element_transmittance(el, x, product);
+          const std::array<double, 3>& c_in = inside_cs[m][i];
+          for (int k = 0; k < 3; ++k)
+            c[k] = t * (c[k] - raw_pair[m][gh][i][k] - raw_pair[m][gk][i][k] - raw_pair[m][hk][i][k] + raw[m][g][i][k] +
+                        raw[m][h][i][k] + raw[m][k3][i][k] - c_in[k]);
+          sink(m, e, side, c, true, spread);
+        });
       }
     }
   }
