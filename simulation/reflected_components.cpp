@@ -491,7 +491,7 @@ class Transport {
       // shows, E(g, h) − E(g) − E(h) + E(none), under T_g·T_h (each at the centroid's direction
       // about its own pane; the product's spread over the vertices' directions as for one).
       for (std::size_t p = 0; p < pairs.size(); ++p) {
-        const auto [g, h] = pairs[p];
+        const std::size_t g = pairs[p].first, h = pairs[p].second;  // not a structured binding: the lambdas below use them
         bool both_free = false;
         const SphericalRegion both = seen_past(pair_view(g, h), both_free);
         if (both.empty()) continue;
@@ -523,7 +523,7 @@ class Transport {
         const auto pair_at = [&](std::size_t a, std::size_t b) {
           return std::size_t(std::find(pairs.begin(), pairs.end(), std::pair{a, b}) - pairs.begin());
         };
-        const auto [g, h, k3] = triple;
+        const std::size_t g = triple[0], h = triple[1], k3 = triple[2];
         const std::size_t gh = pair_at(g, h), gk = pair_at(g, k3), hk = pair_at(h, k3);
         const auto product = [&](const Vec3& u) {
           double t = 1;
