@@ -11,6 +11,7 @@
 #include "illumination/xoshiro256.hpp"
 #include "materials/glass_transmittance.hpp"
 #include "materials/surface_reflectance.hpp"
+#include "simulation/illuminance.hpp"
 #include "simulation/sensor_loop.hpp"
 
 namespace daylit {
@@ -22,9 +23,8 @@ constexpr double kPi = std::numbers::pi;
 // header: what it costs).
 constexpr double kRelativeOffset = 1e-9;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-// The cosine of the sun's angular radius (0.533° across, as daylit's illuminance takes it:
-// simulation/illuminance.hpp, kSunHalfAngleDeg).
-const double kCosSunRadius = std::cos(0.2665 * kPi / 180);
+// The cosine of the sun's angular radius, the disk daylit's illuminance cuts (0.533° across).
+const double kCosSunRadius = std::cos(kSunHalfAngleDeg * kPi / 180);
 
 Vec3 component_min(const Vec3& a, const Vec3& b) noexcept { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 Vec3 component_max(const Vec3& a, const Vec3& b) noexcept { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
