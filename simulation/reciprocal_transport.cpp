@@ -121,7 +121,7 @@ CoarseSpace coarse_space(const std::vector<double>& diagonal, const std::vector<
     std::uint32_t to = kNone;
     for (std::size_t i = 0; i < s[u].size(); ++i) {
       const std::uint32_t j = column[u][i];
-      if (strong(u, i) && c.aggregate[j] != kNone && c.sign[j] != 0 && std::abs(s[u][i]) > best) {
+      if (strong(u, i) && c.aggregate[j] != kNone && std::abs(s[u][i]) > best) {
         best = std::abs(s[u][i]);
         to = j;
       }
