@@ -258,7 +258,8 @@ int run_annual(AnnualCommandOptions opt) {
          "the radiosity of `daylit df --components all` written as a linear map W (sensor x mesh node, by a dense LU); "
          "each node's first bounce per hour from the sky (its luminance interpolated bilinearly on a grid of directions, "
          "the grid's hat functions integrated over the node's exactly visible regions by a product Gauss rule), the "
-         "sun's disk (cut exactly by each node's visible regions, every hour) and "
+         "sun (every hour, integrated over each element: its parallel beam past every polygon, the panes' "
+         "transmittances along it, the lit parts projected onto the element's linear functions; the disk as a point) and "
          "the far ground (rho_g E_h / pi, exact); blinds scale the light each window group lets in"},
         {"direction_grid", {{"altitude_step_deg", 90.0 / direction_grid.rows},
                             {"azimuth_step_deg", 360.0 / direction_grid.columns},

@@ -356,10 +356,14 @@ int run_illuminance(IlluminanceOptions opt) {
     if (horizontal_lux > 0) {
       ReflectionOptions ro = reflection_options(opt.reflections);
       ro.mode = mode;
-      ro.light = [&c](const SphericalRegion& above, const Vec3& n, const Aperture* aperture) {
-        return daylight_irradiance(c, aperture, above, n);
+      // The sky at the nodes; the sun integrated over the elements (ReflectionOptions::sun).
+      DaylightConditions sky_alone = c;
+      sky_alone.direct_normal = 0;
+      ro.light = [sky_alone](const SphericalRegion& above, const Vec3& n, const Aperture* aperture) {
+        return daylight_irradiance(sky_alone, aperture, above, n);
       };
       ro.light_horizontal = horizontal_lux;
+      if (c.has_sun()) ro.sun = ReflectionOptions::Sun{c.sun, c.direct_normal};
       ro.on_progress = reflection_progress_bars(show_progress);
       reflections = reflected_components(model.scene, rho.reflectance, engine, grid_ptrs, ro);
     } else {
@@ -464,7 +468,10 @@ int run_illuminance(IlluminanceOptions opt) {
                                                     : nlohmann::json{"sky_direct", "erc", "irc"};
     summary["components"]["illuminance_lux_is"] = "sky_lux + sun_lux + erc_lux + irc_lux";
     summary["components"]["lit_by"] = {
-        {"first_bounce", c.has_sun() ? "the sky and the sun, through the apertures and seen directly"
+        {"first_bounce", c.has_sun() ? "the sky, through the apertures and seen directly, at the nodes; the sun integrated "
+                                       "over each element (its parallel beam past every polygon, the panes' transmittances "
+                                       "along it, the lit parts projected onto the element's linear functions; the disk as "
+                                       "a point)"
                                      : "the sky, through the apertures and seen directly"},
         {"unobstructed_horizontal_lux", horizontal_lux},
         {"far_ground_luminance_is", "ground_reflectance x unobstructed_horizontal_lux / pi (sky and sun)"}};

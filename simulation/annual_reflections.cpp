@@ -1,6 +1,5 @@
 #include "simulation/annual_reflections.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -15,12 +14,11 @@
 #include <numbers>
 #include <optional>
 
-#include "illumination/cap_clip.hpp"
 #include "illumination/fan_product_rule.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "simulation/direction_angles.hpp"
-#include "simulation/illuminance.hpp"
 #include "simulation/pane_transmittance.hpp"
+#include "simulation/sunlit_elements.hpp"
 
 namespace daylit {
 
@@ -153,77 +151,39 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
   return d;
 }
 
-// A cap around each view's region (its vertices' mean direction, the largest angle to them; a
-// whole hemisphere where that reaches 81°, since a cap is convex only below 90°), so that an hour's
-// sun far from it is left out before the exact cut: a sun whose centre is more than the radius and
-// the sun's diameter away, i.e. s·centre < cos_reach (a dot per node, view and hour, no arc).
-struct ViewCap {
-  Vec3 centre{0, 0, 1};
-  double radius = kPi;
-  double cos_reach = -2;  // cos(radius + 2ρ_sun); −2: nothing is left out
-};
-std::vector<std::vector<ViewCap>> view_caps(const ReflectionOperator& op) {
-  std::vector<std::vector<ViewCap>> caps(op.nodes.size());
-  tbb::parallel_for(std::size_t(0), op.nodes.size(), [&](std::size_t k) {
-    for (const LightView& view : op.nodes[k].views) {
-      ViewCap cap;
-      Vec3 sum{0, 0, 0};
-      for (const DirectionLoop& loop : view.above.loops)
-        for (const Vec3& p : loop) sum = sum + normalized(p);
-      if (norm(sum) > 0) {
-        cap.centre = normalized(sum);
-        double r = 0;
-        for (const DirectionLoop& loop : view.above.loops)
-          for (const Vec3& p : loop) r = std::max(r, angle_between(cap.centre, p));
-        if (r < 0.45 * kPi) {
-          cap.radius = r;
-          cap.cos_reach = std::cos(r + 2 * kSunHalfAngleDeg * kPi / 180);
-        }
-      }
-      caps[k].push_back(cap);
-    }
-  });
-  return caps;
-}
-
-// The sun's first bounce in lux at nodes [first, last), per channel ([channel](node, column)), for
-// each hour of a block that has a sun: its disk cut exactly by each view's region (cap_lambert),
-// glass's T at the disk's centre (as direct_sun_lux). A node's hours are its inner loop, so that
-// its views' regions stay in cache across the block (over nodes per hour, most of this was
-// waiting on memory).
+// The sun's first bounce in lux at every node, per channel ([channel](node, column)), for each
+// hour of a block that has a sun: integrated over each element side (sunlit_elements.hpp: the L²
+// projection of the light on the element, exact in the flux and first moments of its sun patch,
+// which a node's sample was not), the light that came in by a window of group g in channel g, what
+// came by no window (outdoors) in the last. An hour's polygons across its beam are found once and
+// serve every side; the hours run in parallel, each writing its own column.
 struct SunHour {
   Vec3 sun;
   double direct_normal_lux = 0;
   Eigen::Index column = 0;
 };
-void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const std::vector<std::vector<ViewCap>>& caps,
+void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const std::vector<ConvexPiece>& pieces,
                       const std::vector<int>& group_of_aperture, std::size_t groups, const std::vector<SunHour>& hours,
-                      std::size_t first, std::size_t last, std::vector<Eigen::MatrixXd>& out) {
-  const double rho = kSunHalfAngleDeg * kPi / 180;
-  const double sin_rho = std::sin(rho);
-  const double disk = kPi * sin_rho * sin_rho;
-  for (std::size_t k = first; k < last; ++k) {
-    const ReflectionNode& node = op.nodes[k];
-    for (const SunHour& hour : hours) {
-      const Vec3& sun = hour.sun;
-      if (dot(node.normal, sun) < -sin_rho) continue;
-      const double radiance = hour.direct_normal_lux / disk;
-      for (std::size_t v = 0; v < node.views.size(); ++v) {
-        const LightView& view = node.views[v];
-        if (view.above.empty()) continue;
-        const ViewCap& cap = caps[k][v];
-        if (dot(cap.centre, sun) < cap.cos_reach) continue;
-        const double visible = cap_lambert(view.above, sun, rho, node.normal);
-        if (visible == 0) continue;
-        const Aperture* a = view.transmitting(scene);
-        const std::size_t channel = a != nullptr ? std::size_t(group_of_aperture[std::size_t(view.aperture)]) : groups;
-        const double t = a == nullptr         ? 1.0
-                         : view.panes.empty() ? ApertureTransmittance(*a)(sun)
-                                              : transmittance_along(scene, std::size_t(view.aperture), view.panes, sun);
-        out[channel](Eigen::Index(k), hour.column) += view.sign * radiance * visible * t;
+                      std::vector<Eigen::MatrixXd>& out) {
+  tbb::parallel_for(std::size_t(0), hours.size(), [&](std::size_t h) {
+    const SunHour& hour = hours[h];
+    std::vector<double> transmittance(scene.occluders.size(), 0.0);
+    for (const Aperture& a : scene.apertures) transmittance.push_back(ApertureTransmittance(a)(hour.sun));
+    const SunlitElements sunlit(pieces, transmittance, hour.sun, op.scale);
+    for (std::size_t i = 0; i < op.sides.size(); ++i) {
+      const Vec3& n = op.nodes[3 * i].normal;
+      const double facing = dot(n, hour.sun);
+      if (!(facing > 0)) continue;
+      const double scale = hour.direct_normal_lux * facing * 3 / op.sides[i].area;
+      for (const SunlitPart& part : sunlit.parts(op.sides[i], n, op.side_polygon[i])) {
+        const std::size_t channel = part.outer_polygon == SunlitPart::kDirect
+                                        ? groups
+                                        : std::size_t(group_of_aperture[part.outer_polygon - scene.occluders.size()]);
+        for (std::size_t k = 0; k < 3; ++k)
+          out[channel](Eigen::Index(3 * i + k), hour.column) += scale * part.integrals[k];
       }
     }
-  }
+  });
 }
 
 }  // namespace
@@ -285,18 +245,20 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   };
   const Columns columns{fine.vertices(), coarse.vertices()};
   const std::size_t apertures = scene.apertures.size();
+  // The polygons that block or filter the sun, as the operators' sides name them.
+  std::vector<Polygon> polygons = scene.occluders;
+  for (const Aperture& a : scene.apertures) polygons.push_back(a.polygon);
+  const std::vector<ConvexPiece> sun_pieces = sun_blocker_pieces(polygons);
 
-  // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun, the
-  // views' caps.
+  // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun.
   struct Mesh {
     const ReflectionOperator* op;
     std::vector<RowMatrix> d;
-    std::vector<std::vector<ViewCap>> caps;
   };
   std::vector<Mesh> meshes;
   for (const ReflectionOperator* op : {&fine_op, coarse_op}) {
     if (op == nullptr) continue;
-    Mesh m{op, {}, view_caps(*op)};
+    Mesh m{op, {}};
     const std::vector<NodeColumns> q = node_columns(scene, *op, fine, coarse, group_of_aperture, groups, columns);
     m.d = sensor_columns(*op, grid_index, q, group_of_aperture, groups, columns, apertures);
     meshes.push_back(std::move(m));
@@ -351,10 +313,7 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
         const HourLight& hour = sky_hours[lit[start + b]];
         if (hour.direct_normal_lux > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
       }
-      if (!suns.empty())
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
-          sun_first_bounce(scene, *m.op, m.caps, group_of_aperture, groups, suns, r.begin(), r.end(), sun);
-        });
+      if (!suns.empty()) sun_first_bounce(scene, *m.op, sun_pieces, group_of_aperture, groups, suns, sun);
       Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
       if (both_grids) total_coarse = total_fine;
       for (std::size_t g = 0; g <= groups; ++g) {

@@ -11,8 +11,10 @@
 //           q_b = ∫ φ_b T (n·u) dσ, φ_b the grid's hat functions, integrated by a product Gauss
 //           rule on the view's fan triangles, each cut until no side spans more than
 //           kReflectionTriangleDeg (fan_product_rule.hpp);
-//   sun:    per hour, exact: the disk cut by each view's region (cap_lambert), glass's T at its
-//           centre;
+//   sun:    per hour and element side, not per node: the light of its parallel beam (the disk as
+//           a point) past every polygon, each pane's T along it, projected onto the element's
+//           linear functions (sunlit_elements.hpp), so that a patch narrower than the elements
+//           keeps its flux;
 //   ground: the view's far-ground integral, exact (LightView::ground).
 // Per sensor then D = W Q (Q: node × column), split by the window group through which the light
 // entered the room (a node's view through an aperture: that aperture's group; nodes lit directly,

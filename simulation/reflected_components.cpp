@@ -25,6 +25,8 @@
 #include "simulation/radiosity_solver.hpp"
 #include "simulation/reciprocal_transport.hpp"
 #include "simulation/sensor_loop.hpp"
+#include "simulation/sunlit_elements.hpp"
+#include "simulation/annual_coefficients.hpp"
 
 namespace daylit {
 
@@ -160,6 +162,23 @@ class Transport {
       find_live_sides(grids);
     build_luminaire_engines();
     build_sky_box(all);
+    if (options.sun && options.sun->direct_normal > 0 && options.sun->direction.z > 0) {
+      std::vector<double> transmittance(scene.occluders.size(), 0.0);
+      for (const Aperture& a : scene.apertures) transmittance.push_back(ApertureTransmittance(a)(options.sun->direction));
+      sun_pieces_ = sun_blocker_pieces(polygons_);
+      sunlit_ = std::make_unique<SunlitElements>(sun_pieces_, transmittance, options.sun->direction, scale_);
+    }
+  }
+
+  // The sun's first bounce at the three nodes of side `side` of element `el` (sunlit_elements.hpp:
+  // the L² projection of the light over the element); zeros without a sun.
+  std::array<double, 3> sun_first_bounce(const RadiosityElement& el, int side) const {
+    if (!sunlit_) return {0, 0, 0};
+    const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
+    std::array<double, 3> e = sunlit_->basis_integrals(el, n, mesh_.surfaces[el.surface].occluder);
+    const double scale = options_.sun->direct_normal * dot(n, options_.sun->direction) * 3 / el.area;
+    for (double& v : e) v *= scale;
+    return e;
   }
 
   // Whether side `side` (0 along the surface's normal) of surface s can send light to a sensor,
@@ -172,6 +191,7 @@ class Transport {
   }
 
   const RadiosityMesh& mesh() const { return mesh_; }
+  double scale() const { return scale_; }
   double e_out() const { return e_out_; }
   std::size_t unknowns() const { return 6 * mesh_.elements.size(); }
   std::size_t surface_count() const { return mesh_.surfaces.size(); }
@@ -820,6 +840,8 @@ class Transport {
   std::vector<Vec3> pane_normals_, pane_points_;          // per aperture: its plane
   std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;
+  std::vector<ConvexPiece> sun_pieces_;     // with options.sun: every polygon_'s convex pieces
+  std::unique_ptr<SunlitElements> sunlit_;  // with options.sun
   std::vector<std::array<bool, 2>> live_;  // per surface and side
   double coarsening_ = 1;
 };
@@ -913,6 +935,7 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
     if (!t.live(el.surface, side)) return;
     const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
     const bool kept = earlier != nullptr && !earlier->split[earlier->parent[e]];
+    const std::array<double, 3> sun = kept ? std::array<double, 3>{0, 0, 0} : t.sun_first_bounce(el, side);
     for (int k = 0; k < 3; ++k) {
       ReceiverRow r;
       if (kept) {
@@ -931,6 +954,7 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
             &earlier->refined_surface);
       } else {
         r = receiver_row(t, el.nodes[k], n, el.surface, local.counters);
+        r.first_bounce += sun[std::size_t(k)];
       }
       local.direct_empty += r.direct_empty;
       ++local.direct;
@@ -1553,6 +1577,12 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     throw Error(message);
   }
   op.nodes.resize(n);
+  for (std::size_t u = 0; u < nu; u += 3)
+    if (index[u] >= 0) {
+      op.sides.push_back(mesh.elements[u / 6]);
+      op.side_polygon.push_back(mesh.surfaces[mesh.elements[u / 6].surface].occluder);
+    }
+  op.scale = t.scale();
   std::vector<TransportRow> rows(nu);
   const auto row_locals = for_each_sensor<VisibilityCounters>(
       2 * mesh.elements.size(), 8, stage_progress(opt, "reflections: the mesh's rows", "element sides", 2 * mesh.elements.size()),

@@ -8,7 +8,8 @@
 //   First bounce at a receiver (x, n): (a) through each aperture the sky above the horizon and the
 //   far ground below it (uniform luminance ρ_g·E_out/π, as gensky's ground glow), times the
 //   aperture's transmittance; (b) the sky and far ground seen directly, through the six inward
-//   faces of a box around the model, past every opaque and aperture polygon.
+//   faces of a box around the model, past every opaque and aperture polygon. The sun, where set
+//   (ReflectionOptions::sun), integrated over each element instead (sunlit_elements.hpp).
 //   Transport: the irradiance from every element of every other reflecting surface P, over the
 //   exactly visible part of P (element_transport.hpp). Visibility between surfaces uses engines
 //   built once whose apertures are the reflecting surfaces, queried as luminaires
@@ -47,6 +48,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <string>
 #include <vector>
@@ -71,6 +73,15 @@ struct ReflectionOptions {
   // zenith luminance.
   std::function<double(const SphericalRegion& above, const Vec3& n, const Aperture* aperture)> light;
   double light_horizontal = 0;
+  // The sun, where set along with `light` (which then leaves it out): its first bounce integrated
+  // over each element (sunlit_elements.hpp), not read at the nodes, whose samples of a sun patch
+  // narrower than the elements can be far off. Its direction (unit, towards it) and its direct
+  // normal irradiance in light_horizontal's units.
+  struct Sun {
+    Vec3 direction{0, 0, 1};
+    double direct_normal = 0;
+  };
+  std::optional<Sun> sun;
   GeometryMode mode = GeometryMode::exact;
   double ground_reflectance = 0.2;   // ρ_g of the far ground, in [0, 1)
   double tolerance_percent = 0.05;   // target of every sensor's error estimate, DF points
@@ -201,6 +212,12 @@ struct ReflectionOperator {
   // as df's (Transport::direct): such a sensor is outdoors, and takes light from outdoors as it
   // comes, through no window and no blinds.
   std::vector<std::vector<char>> sensor_outdoors;
+  // Per live element side, whose nodes are nodes[3i], nodes[3i + 1] and nodes[3i + 2] (normal:
+  // theirs): its triangle and the polygon it lies on (Scene::occluders, then the apertures' panes),
+  // over which the sun's first bounce is integrated (sunlit_elements.hpp); and the model's size.
+  std::vector<RadiosityElement> sides;
+  std::vector<std::size_t> side_polygon;
+  double scale = 1;
   std::size_t elements = 0;
   double element_size = 0;           // as used
   std::size_t sides_solved = 0, sides_left_out = 0;

@@ -7,10 +7,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "illumination/cap_clip.hpp"
 #include "illumination/moments.hpp"
 #include "simulation/annual_reflections.hpp"
-#include "simulation/illuminance.hpp"
 #include "simulation/reflected_components.hpp"
 #include "sky/sky_model.hpp"
 #include "test_scenes.hpp"
@@ -148,25 +146,24 @@ TEST_CASE("annual reflections: the direction grid's first bounce against the exa
   }
 }
 
-TEST_CASE("annual reflections: the sun's first bounce is exact, on and off the direction grid") {
+TEST_CASE("annual reflections: the sun's first bounce is reflected_components', on and off the direction grid") {
   const GlazedRoom room(true);
   const VisibilityEngine engine(room.scene, GeometryMode::exact);
   const ReflectionOptions o = options(1.0);
   const ReflectionOperator op = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o);
   const DirectionGrid grid;
-  const double rho = kSunHalfAngleDeg * kPi / 180, e_dn = 1e5;
+  const double e_dn = 1e5;
   // The sun through the window (the room lies at y > 0): azimuth 270° from +x is −y.
   const Vec3 on_grid = grid.direction(grid.vertex(14, 54));  // altitude 35°
   const Vec3 off_grid = normalized(Vec3{0.31, -0.8, 0.55});
   for (int which = 0; which < 2; ++which) {
     const Vec3 sun = which == 0 ? on_grid : off_grid;
+    // The same sun in reflected_components, integrated over its elements there too
+    // (sunlit_elements.hpp), with a dark sky.
     ReflectionOptions os = o;
-    os.light = [&](const SphericalRegion& above, const Vec3& n, const Aperture* a) {
-      const double l = e_dn / (kPi * std::sin(rho) * std::sin(rho));
-      const double t = a != nullptr ? ApertureTransmittance(*a)(sun) : 1.0;
-      return l * t * cap_lambert(above, sun, rho, n);
-    };
+    os.light = [](const SphericalRegion&, const Vec3&, const Aperture*) { return 0.0; };
     os.light_horizontal = e_dn * sun.z;
+    os.sun = ReflectionOptions::Sun{sun, e_dn};
     const ReflectionResult solved = reflected_components(room.scene, room.reflectance, engine, {&room.grid}, os);
     const ReflectedHours r = reflected_light(room.scene, op, nullptr, 0, {0}, 1,
                                              {HourLight{[](const Vec3&) { return 0.0; }, sun, e_dn, e_dn * sun.z}},
