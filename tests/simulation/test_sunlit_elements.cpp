@@ -144,3 +144,20 @@ TEST_CASE("sunlit elements: a window's beam puts on a closed room exactly its fl
     CHECK(floor_y == Approx(1.1 * beam).epsilon(1e-12));
   }
 }
+
+TEST_CASE("sunlit elements: a sun grazing the element at 1e-6 rad still leaves the closed forms (stiff)") {
+  // s = (cos ε, 0, sin ε): a point at height h casts its shadow h/tan ε further to −x, so a roof at
+  // height 1e-6 over x ∈ [1.5, 3] shades x ∈ [0.5, 2] up to O(ε²). The projection multiplies the
+  // roof's coordinates' roundoff by 1/tan ε = 1e6 (1e-10 absolute on the shadow's edge), and the
+  // edge moves by ε² relative: 1e-9 covers both.
+  const double eps = 1e-6;
+  const Vec3 sun{std::cos(eps), 0, std::sin(eps)};
+  const Polygon roof = polygon({{1.5, -1, 1e-6}, {3, -1, 1e-6}, {3, 2, 1e-6}, {1.5, 2, 1e-6}}, "roof");
+  const std::vector<ConvexPiece> pieces = sun_blocker_pieces({roof});
+  const SunlitElements sunlit(pieces, {0.0}, sun, 1.0);
+  const auto b = sunlit.basis_integrals(unit_element(), {0, 0, 1}, 99);
+  for (int k = 0; k < 3; ++k) CHECK(b[std::size_t(k)] == Approx(kLit[k]).margin(1e-9));
+  // Below 1e-9 rad the side is left out: at most 1e-9 of E_dn per unit area.
+  const SunlitElements flat(pieces, {0.0}, Vec3{1, 0, 1e-12}, 1.0);
+  for (double v : flat.basis_integrals(unit_element(), {0, 0, 1}, 99)) CHECK(v == 0);
+}
