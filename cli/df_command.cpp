@@ -161,6 +161,7 @@ int run_df(DfOptions opt) {
     if (!opt.quiet && reflections->black)
       std::cerr << "notice: nothing reflects (every surface black and --ground-reflectance 0): ERC = IRC = 0, no "
                    "radiosity work done\n";
+    if (!opt.quiet && !reflections->stopped.empty()) std::cerr << "notice: " << reflections->stopped << '\n';
     for (std::size_t g = 0; g < reports.size(); ++g) {
       GridReport& r = reports[g];
       const SensorReflections& sr = reflections->grids[g];

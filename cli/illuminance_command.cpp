@@ -366,6 +366,7 @@ int run_illuminance(IlluminanceOptions opt) {
       if (c.has_sun()) ro.sun = ReflectionOptions::Sun{c.sun, c.direct_normal};
       ro.on_progress = reflection_progress_bars(show_progress);
       reflections = reflected_components(model.scene, rho.reflectance, engine, grid_ptrs, ro);
+      if (!opt.quiet && !reflections->stopped.empty()) std::cerr << "notice: " << reflections->stopped << '\n';
     } else {
       // No light outside at all (the sun down, no sky): nothing to reflect, exactly.
       ReflectionResult none;

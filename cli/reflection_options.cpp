@@ -1,5 +1,9 @@
 #include "cli/reflection_options.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -55,8 +59,28 @@ void add_reflection_options(CLI::App& command, ReflectionCliOptions& o, const st
                           ->check(CLI::IsMember({"reciprocal", "collocated"})));
 }
 
+namespace {
+
+// The memory this process may use: the machine's, or its control group's limit where lower
+// (a container's: cgroup v2's memory.max, v1's memory.limit_in_bytes); 0 where unknown.
+std::size_t usable_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  std::size_t bytes = pages > 0 && page > 0 ? std::size_t(pages) * std::size_t(page) : 0;
+  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(path);
+    unsigned long long limit = 0;
+    if (in >> limit && limit > 0) bytes = bytes == 0 ? std::size_t(limit) : std::min(bytes, std::size_t(limit));
+  }
+  return bytes;
+}
+
+}  // namespace
+
 ReflectionOptions reflection_options(const ReflectionCliOptions& o) {
   ReflectionOptions r;
+  // Three quarters of it for the rows of K: the rest for the visibility engines, the sensors'
+  // cache and the other processes of the machine.
+  r.memory_bytes = usable_memory_bytes() / 4 * 3;
   r.ground_reflectance = o.ground_reflectance;
   r.tolerance_percent = o.tolerance;
   r.element_size = o.element_size;
@@ -146,6 +170,7 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"tolerance_percent", opt.tolerance},
       {"max_estimate_percent", r.max_error_percent},
       {"met", r.max_error_percent <= opt.tolerance},
+      {"stopped", r.stopped.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.stopped)},
       {"how",
        "estimate, not a rigorous bound: each sensor's ERC and IRC from the reported mesh against those from the mesh "
        "it was split from (elements twice as large), element by element (|what an element gives - what its four "

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -1036,6 +1037,12 @@ double median_room_span(const std::vector<Polygon>& surfaces, const SensorGrid& 
 
 }  // namespace
 
+double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept) {
+  if (!(elements > 0)) return 0;
+  const double growth = next_elements / elements;
+  return 2 * 24 * entries * growth * growth + (earlier_kept ? 24 * entries : 0.0);
+}
+
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {
   std::vector<Polygon> surfaces = scene.occluders;
   for (const Aperture& a : scene.apertures) surfaces.push_back(a.polygon);
@@ -1067,6 +1074,7 @@ struct MeshSolution {
   double solver_change = 0;
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0;
   ReciprocityReport reciprocity;
+  std::size_t entries = 0;  // of the rows of K
 };
 
 // Wall seconds since `start`, restarting it.
@@ -1099,6 +1107,7 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     if (t.live(el.surface, int(u / 3 % 2))) weight[u] = el.area / 3;
   });
   MeshSolution out;
+  for (const TransportRow& row : k_rows) out.entries += row.size();
   if (reciprocal) {
     out.reciprocity = make_reciprocal(k_rows, weight);
     result.stages.push_back({name + ": reciprocity", lap(clock)});
@@ -1472,6 +1481,25 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   // Round 0 splits every element of the coarse mesh; each further round splits only what
   // local_refinement flags, and takes the rest of its rows from the round before (EarlierRows).
   RadiosityMesh coarse_mesh = t.mesh();
+  const auto gigabytes = [](double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+    return std::string(text);
+  };
+  if (opt.memory_bytes > 0) {
+    const double elements = double(coarse_mesh.elements.size());
+    const double needed = rows_bytes_estimate(double(coarse.entries), elements, 4 * elements, false);
+    if (needed > double(opt.memory_bytes)) {
+      std::string message = "the reflected components' mesh of ";
+      message += std::to_string(4 * coarse_mesh.elements.size());
+      message += " elements would need about " + gigabytes(needed);
+      message += " for its transport rows, more than the " + gigabytes(double(opt.memory_bytes));
+      message += " allowed: raise --element-size (now ";
+      message += std::to_string(opt.element_size);
+      message += ")";
+      throw Error(message);
+    }
+  }
   std::vector<bool> split(coarse_mesh.elements.size(), true);
   std::vector<std::size_t> parent = t.split_all();
   std::vector<std::vector<double>> carried;  // per grid and sensor: the estimate of elements not split since
@@ -1535,6 +1563,18 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     std::vector<bool> next = local_refinement(values, opt.tolerance_percent / to_percent, parent,
                                               coarse_mesh.elements.size(), carried);
     if (std::find(next.begin(), next.end(), true) == next.end()) break;  // nothing a sensor could flag
+    if (opt.memory_bytes > 0) {
+      const double elements = double(t.mesh().elements.size());
+      const double next_elements = elements + 3.0 * double(std::count(next.begin(), next.end(), true));
+      const double needed = rows_bytes_estimate(double(fine.entries), elements, next_elements, true);
+      if (needed > double(opt.memory_bytes)) {
+        result.stopped = "refinement stopped after round " + std::to_string(round) + ": round " +
+                         std::to_string(round + 1) + " (" + std::to_string(std::size_t(next_elements)) +
+                         " elements) would need about " + gigabytes(needed) + " for its transport rows, more than the " +
+                         gigabytes(double(opt.memory_bytes)) + " allowed; the tolerance is not met";
+        break;
+      }
+    }
     earlier = std::make_unique<EarlierRows>();
     earlier->rows = std::move(kept_rows);
     coarse = std::move(fine);

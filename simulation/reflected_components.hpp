@@ -100,6 +100,12 @@ struct ReflectionOptions {
   // energy to roundoff on every mesh; false: the rows as collocated at the nodes, whose energy
   // balance is off by the mesh's reciprocity defect (reported).
   bool reciprocal_transport = true;
+  // The memory the rows of K may take, in bytes (0: no limit). A mesh's rows are estimated from
+  // the coarser mesh's before they are found (their entries grow with the square of the number of
+  // elements: rows_bytes_estimate): a refinement round that would need more is not started (the
+  // run stops refining and says so, ReflectionResult::stopped); a first mesh that would, is refused
+  // with an error that names the sizes, instead of a machine that runs out of memory.
+  std::size_t memory_bytes = 0;
   // Called now and then with a stage's name ("radiosity: the mesh's rows", …), what it counts
   // ("element sides", "sensors"), how many are done and their number, from one thread at a time:
   // for a progress bar over the whole run.
@@ -134,6 +140,9 @@ struct ReflectionResult {
   double flux_first_bounce = 0, flux_absorbed = 0, flux_escaping = 0, balance_mismatch = 0;
   ReciprocityReport reciprocity;       // of the reported mesh's transport (zeros where not made reciprocal)
   std::vector<double> error_by_round;  // max sensor estimate after each round
+  // Why refining stopped before the tolerance was met, where that was memory
+  // (ReflectionOptions::memory_bytes); empty otherwise.
+  std::string stopped;
   // Where the run's wall time went, stage by stage in order ("mesh and visibility engines",
   // "coarse mesh: rows", …, "round 0: sensors"), for the summary.
   struct StageTime {
@@ -154,6 +163,13 @@ struct ReflectionResult {
 // (two sensors 0.5 m apart in the room sample gave 0.1 m elements: 7,956 of them and 30 s,
 // against 876 and 2 s for its 80-sensor grid, for IRC the same to 0.2 %). No grid with an
 // extent: a fifth of the box around the apertures and the sensors.
+// The peak bytes of a round's rows of K (found, copied for the solver, the round before's kept
+// beside them): 2 × 24 bytes per entry of its rows (an entry is 16 bytes, a vector grown by
+// push_back holds up to half again as many) plus the earlier rows. `entries`: the earlier mesh's
+// count over `elements` elements; the new mesh has `next_elements`, each row seeing that many
+// times more elements, and that many times more rows.
+double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept);
+
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids);
 
 // The discrete system of a scene at its first mesh (elements of the asked size, both sides of

@@ -626,6 +626,42 @@ TEST_CASE("window room: a tolerance no mesh meets splits, in a further round, ev
   CHECK(met.error_by_round.size() == 1);
 }
 
+TEST_CASE("window room: a first mesh whose rows would not fit the memory allowed is refused; a round that would not is not started") {
+  const WindowRoom room;
+  const VisibilityEngine engine(room.scene, GeometryMode::exact);
+  ReflectionOptions o;
+  o.element_size = 1.5;
+  o.max_refinements = 2;
+  o.tolerance_percent = 1e-6;  // no mesh meets it: only the memory stops the rounds
+  const auto solve = [&](std::size_t bytes) {
+    o.memory_bytes = bytes;
+    return reflected_components(room.scene, room.reflectance, engine, {&room.grid}, o);
+  };
+  CHECK_THROWS_WITH(solve(1000), Catch::Contains("for its transport rows") && Catch::Contains("raise --element-size"));
+  // The least budget (to 1 %) the first mesh fits: the next round's rows, more than the first's
+  // (as many again and the first's kept beside them), do not.
+  double refused = 1000, fits = 1e12;
+  while (fits > 1.01 * refused) {
+    const double mid = std::sqrt(refused * fits);
+    try {
+      solve(std::size_t(mid));
+      fits = mid;
+    } catch (const Error&) {
+      refused = mid;
+    }
+  }
+  const ReflectionResult stopped = solve(std::size_t(fits));
+  const ReflectionResult first = solve_room(room, 1.5);
+  CHECK(stopped.refinements == 0);
+  CHECK_THAT(stopped.stopped, Catch::Contains("refinement stopped after round 0") && Catch::Contains("tolerance is not met"));
+  CHECK(stopped.max_error_percent == first.max_error_percent);
+  CHECK(stopped.grids[0].irc_percent == first.grids[0].irc_percent);
+  // Without a limit the same run refines twice and says nothing.
+  const ReflectionResult unlimited = solve(0);
+  CHECK(unlimited.refinements == 2);
+  CHECK(unlimited.stopped.empty());
+}
+
 TEST_CASE("window room: a local refinement splits only what the sensors over the tolerance flag, lowers their error and its estimate still covers it") {
   WindowRoom room;
   // Sensors 5 cm from two walls, one of them the window wall: where the exitance varies fastest.
