@@ -311,7 +311,8 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
       std::vector<SunHour> suns;
       for (std::size_t b = 0; b < count; ++b) {
         const HourLight& hour = sky_hours[lit[start + b]];
-        if (hour.direct_normal_lux > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
+        // A sun below the horizon lights nothing (the point sun's first bounce: sunlit_elements.hpp).
+        if (hour.direct_normal_lux > 0 && hour.sun.z > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
       }
       if (!suns.empty()) sun_first_bounce(scene, *m.op, sun_pieces, group_of_aperture, groups, suns, sun);
       Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
