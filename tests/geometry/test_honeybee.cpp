@@ -143,7 +143,7 @@ TEST_CASE("HBJSON: a room's modifier set, the model's modifiers and their defaul
   CHECK(scene.occluders.size() == 17);
 }
 
-TEST_CASE("HBJSON: a room's modifier set fills its slots; null slots take Honeybee's defaults") {
+TEST_CASE("HBJSON: a room's modifier set fills its slots, null slots take Honeybee's defaults") {
   const std::string radiance = R"({"modifiers": [{"type": "Plastic", "identifier": "paint", "r_reflectance": 0.3,
       "g_reflectance": 0.3, "b_reflectance": 0.3, "specularity": 0, "roughness": 0}],
       "modifier_sets": [{"type": "ModifierSetAbridged", "identifier": "s",

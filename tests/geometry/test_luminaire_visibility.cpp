@@ -93,7 +93,7 @@ Polygon unit_square_at(double z) { return polygon({{-0.5, -0.5, z}, {0.5, -0.5, 
 
 }  // namespace
 
-TEST_CASE("an occluder wholly beyond a luminaire does not hide it; with occluders beyond it does") {
+TEST_CASE("an occluder wholly beyond a luminaire does not hide it, with occluders beyond it does") {
   // The luminaire is a surface of the model and so also an occluder, not excluded: touching its
   // own plane, it lies "not between" and hides nothing. A ceiling above it (beyond, seen from the
   // receiver) covers the whole view.

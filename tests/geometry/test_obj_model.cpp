@@ -82,7 +82,7 @@ TEST_CASE("OBJ: the room and the office written as OBJ are the scenes of their .
   }
 }
 
-TEST_CASE("OBJ: y up in millimetres reads back to the room in metres, exactly; relative indices and v/vt/vn too") {
+TEST_CASE("OBJ: y up in millimetres reads back to the room in metres, exactly, relative indices and v/vt/vn too") {
   const ObjMaterialMap map = read_obj_material_map(kData + "room_map.json");
   const Scene rad = rad_scene("room");
   ObjOptions mm;
@@ -354,7 +354,7 @@ TEST_CASE("OBJ: the map's roles, patterns and precedence") {
                     Contains("needs a transmittance"));
 }
 
-TEST_CASE("OBJ: faces without a known material are opaque at 0.5, counted; glass by transmittance inverts Radiance's model") {
+TEST_CASE("OBJ: faces without a known material are opaque at 0.5, counted, glass by transmittance inverts Radiance's model") {
   const Scene s = scene_of(obj("mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl Nowhere\nf 1 2 3\nusemtl G\nf 1 2 3\n",
                                {{"a.mtl", "newmtl G\nd 0.5\n"}}),
                            R"({"materials": {"G": {"role": "glass", "transmittance": 0.64}}})");

@@ -98,7 +98,7 @@ TEST_CASE("opaque materials in aperture files are occluders, with one notice") {
                                    Contains("occluders"));
 }
 
-TEST_CASE("void polygons in scene files are nothing; light, glow and illum polygons are left out") {
+TEST_CASE("void polygons in scene files are nothing, light, glow and illum polygons are left out") {
   const std::string text =
       "void plastic black 0 0 5 0 0 0 0 0\nvoid light lamp 0 0 3 10 10 10\nvoid glow window_glow 0 0 4 1 1 1 0\n"
       "void illum ill 0 0 3 1 1 1\n"
@@ -131,7 +131,7 @@ TEST_CASE("BSDF apertures take a stated uniform transmittance, or are an error s
   CHECK_THAT(in_scene.notices.at(0), Contains("left out"));
 }
 
-TEST_CASE("glass known to lie between two rooms is a pane counted as interior, once per pair; other glass is an aperture") {
+TEST_CASE("glass known to lie between two rooms is a pane counted as interior, once per pair, other glass is an aperture") {
   RadContent content = read("void glass g 0 0 3 .9 .9 .9\ng polygon a 0 0 9 0 0 0 1 0 0 1 1 0\n"
                             "g polygon b 0 0 9 0 0 1 1 0 1 1 1 1\ng polygon b2 0 0 9 1 1 1 1 0 1 0 0 1\n");
   content.polygons[1].interior = true;
@@ -192,7 +192,7 @@ TEST_CASE("a command line names the program to run first, and a sky generator is
   CHECK_THROWS_WITH(read("! gensky 6 21 12 +s\n"), Contains("generates a sky") && Contains("--sky"));
 }
 
-TEST_CASE("a mesh is read from the OBJ it was made from, transformed as xform transforms; without that OBJ it is an error saying so") {
+TEST_CASE("a mesh is read from the OBJ it was made from, transformed as xform transforms, without that OBJ it is an error saying so") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("daylit_mesh_" + std::to_string(::getpid()));
   fs::create_directories(dir);

@@ -411,7 +411,7 @@ TEST_CASE("a window as a 64-gon behind occluders is clipped in certified interva
   CHECK(counters.pairs_rational == 0);
 }
 
-TEST_CASE("a reveal that closes the view exactly leaves no loop at all; one that closes it only in decimals leaves a true sliver") {
+TEST_CASE("a reveal that closes the view exactly leaves no loop at all, one that closes it only in decimals leaves a true sliver") {
   Scene scene;
   scene.apertures.push_back({polygon(kWindow, "window"), 1.0});
   for (auto& f : reveal(0.25)) scene.occluders.push_back(f);
@@ -494,7 +494,7 @@ Polygon wall_at(double y0, double hx0, double hx1, double hz0, double hz1) {
 
 }  // namespace
 
-TEST_CASE("a polygon that hides the whole aperture is found before any clipping; one with a hole in the view is clipped") {
+TEST_CASE("a polygon that hides the whole aperture is found before any clipping, one with a hole in the view is clipped") {
   // Sensor p = (1, 3, 0.85) looking at the window (y = 0) through a wall at y = 1: the window's
   // cone meets the wall in x ∈ [1/3, 5/3], z ∈ [0.95, 1.62]. Its other rooms' windows are this
   // case (DESIGN.md §2).

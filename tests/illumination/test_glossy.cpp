@@ -74,7 +74,7 @@ TEST_CASE("a Phong luminaire's irradiance matches quadrature and reduces to Lamb
   CHECK(phong_luminaire_irradiance(region, axis, 0, normal, 2.5) == Approx(2.5 * lambert(region, normal)).epsilon(1e-14));
 }
 
-TEST_CASE("glossy reflection of a window matches quadrature; c beyond the energy bound is refused") {
+TEST_CASE("glossy reflection of a window matches quadrature, c beyond the energy bound is refused") {
   // A floor point with normal z sees a window in the wall y = 3; the viewer looks down at 40°.
   const std::vector<Vec3> window{{-1, 3, 1}, {1, 3, 1}, {1, 3, 2.5}, {-1, 3, 2.5}};
   const auto region = directions_through(window, {});

@@ -54,14 +54,14 @@ void check_close(double got, long double ref, double tol) {
 
 }  // namespace
 
-TEST_CASE("τ^{0;1} = ∫ dσ/(w·u) through Cl2 matches quadrature, for w of any length") {
+TEST_CASE("τ^{0:1} = ∫ dσ/(w·u) through Cl2 matches quadrature, for w of any length") {
   // 3e-14: the Cl2 brackets (GSL, ≤ 8 ulp of their O(1) terms) summed over 8 brackets.
   const long double ref = kGeneral.integrate([](const LVec3& u) { return 1 / dotl(kW, u); });
   check_close(rational_base_moment(kGeneral.region(), kW).value, ref, 3e-14);
   check_close(rational_base_moment(kGeneral.region(), 3.0 * kW).value, ref / 3, 3e-14);
 }
 
-TEST_CASE("τ^{n;1}, τ^{n,1;1} and τ^{n,1,1;1} (eqs. 11–13) match quadrature for n up to 200") {
+TEST_CASE("τ^{n:1}, τ^{n,1:1} and τ^{n,1,1:1} (eqs. 11–13) match quadrature for n up to 200") {
   const SphericalRegion region = kGeneral.region();
   for (const int n : {0, 1, 2, 3, 5, 10, 30, 100, 200}) {
     auto vn = [n](const LVec3& u) { return std::pow(dotl(kV, u), (long double)n); };

@@ -96,7 +96,7 @@ TEST_CASE("reflection operator: W times the exact first bounce is the radiosity 
   }
 }
 
-TEST_CASE("reflection operator: a black room does no radiosity work; the far ground seen through the window stays") {
+TEST_CASE("reflection operator: a black room does no radiosity work, the far ground seen through the window stays") {
   test::WindowRoom room;
   for (double& r : room.reflectance) r = 0;
   const VisibilityEngine engine(room.scene, GeometryMode::exact);

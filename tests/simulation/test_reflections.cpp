@@ -383,7 +383,7 @@ TEST_CASE("closed box, light on the floor only: the mean indirect irradiance is 
   }
 }
 
-TEST_CASE("closed box whose ceiling is a reflecting pane: the pane is a surface of the enclosure (CIE 171 identity with its area); a pane that does not reflect is an opening") {
+TEST_CASE("closed box whose ceiling is a reflecting pane: the pane is a surface of the enclosure (CIE 171 identity with its area), a pane that does not reflect is an opening") {
   // Glass and trans panes reflect (Aperture::reflectance, diffusely; materials/scene_materials.cpp).
   // With the ceiling a pane of the walls' reflectance ρ the enclosure is closed for the reflected
   // light, so the identity of the closed box above holds over all six faces, the pane's inner side
@@ -606,7 +606,7 @@ TEST_CASE("window room: energy balance, first-bounce flux = absorbed + escaping,
                                                            << fine.balance_mismatch << " (0.75)");
 }
 
-TEST_CASE("window room: a tolerance no mesh meets splits, in a further round, every element some sensor sees; a met tolerance stops") {
+TEST_CASE("window room: a tolerance no mesh meets splits, in a further round, every element some sensor sees, a met tolerance stops") {
   const WindowRoom room;
   const ReflectionResult one = solve_room(room, 1.5), two = solve_room(room, 1.5, 1);
   REQUIRE(two.error_by_round.size() == 2);
@@ -626,7 +626,7 @@ TEST_CASE("window room: a tolerance no mesh meets splits, in a further round, ev
   CHECK(met.error_by_round.size() == 1);
 }
 
-TEST_CASE("window room: a first mesh whose rows would not fit the memory allowed is refused; a round that would not is not started") {
+TEST_CASE("window room: a first mesh whose rows would not fit the memory allowed is refused, a round that would not is not started") {
   const WindowRoom room;
   const VisibilityEngine engine(room.scene, GeometryMode::exact);
   ReflectionOptions o;

@@ -48,7 +48,7 @@ long double polar_quadrature(const CieSky& sky) {
 
 }  // namespace
 
-TEST_CASE("every CIE sky has L = L_z at the zenith; type 5 is uniform and type 1 is not the Moon–Spencer sky") {
+TEST_CASE("every CIE sky has L = L_z at the zenith, type 5 is uniform and type 1 is not the Moon–Spencer sky") {
   const Vec3 sun = sun_direction(35, 200);
   for (int type = 1; type <= 15; ++type) CHECK(CieSky(type, sun).relative_luminance({0, 0, 1}) == Approx(1).epsilon(1e-15));
   const CieSky uniform(5, sun);

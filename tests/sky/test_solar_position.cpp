@@ -349,7 +349,7 @@ TEST_CASE("Polar day and polar night") {
   }
 }
 
-TEST_CASE("At the poles the elevation is the declination; no NaN") {
+TEST_CASE("At the poles the elevation is the declination, no NaN") {
   for (const double lat : {90.0, -90.0}) {
     INFO(lat);
     SolarPositionInput in = at("2021-06-21T07:00:00Z", lat, 30);
