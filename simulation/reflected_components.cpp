@@ -1616,6 +1616,18 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     message += "): raise --element-size";
     throw Error(message);
   }
+  // The dense matrix of the LU (8 n² bytes) must fit the memory allowed beside the rows of K
+  // (ReflectionOptions::memory_bytes): checked before the rows are found, and with them after.
+  const auto refuse_memory = [&](double bytes) {
+    if (opt.memory_bytes == 0 || bytes <= double(opt.memory_bytes)) return;
+    char text[160];
+    std::snprintf(text, sizeof text, "%.1f GB for its dense LU and rows, more than the %.1f GB allowed",
+                  bytes / 1e9, double(opt.memory_bytes) / 1e9);
+    throw Error("the reflected components' operator of " + std::to_string(n) + " nodes would need about " + text +
+                ": raise --element-size");
+  };
+  const double lu_bytes = 8.0 * double(n) * double(n);
+  refuse_memory(lu_bytes);
   op.nodes.resize(n);
   for (std::size_t u = 0; u < nu; u += 3)
     if (index[u] >= 0) {
@@ -1655,6 +1667,9 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     op.stages.push_back({"reciprocity", lap(clock)});
   }
 
+  std::size_t entries = 0;
+  for (const TransportRow& row : rows) entries += row.size();
+  refuse_memory(lu_bytes + 24.0 * double(entries));
   // (I − ρK)ᵀ, factorised in place.
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(Eigen::Index(n), Eigen::Index(n));
   std::vector<double> rho(n, 0.0);

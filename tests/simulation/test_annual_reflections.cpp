@@ -107,6 +107,24 @@ TEST_CASE("reflection operator: a black room does no radiosity work, the far gro
   CHECK(op.sensor_ground[0][0] == 0);
 }
 
+TEST_CASE("reflection operator: one whose dense LU and rows would not fit the memory allowed is refused, naming its size") {
+  const test::WindowRoom room;
+  const VisibilityEngine engine(room.scene, GeometryMode::exact);
+  ReflectionOptions o = options(1.0);
+  const ReflectionOperator fits = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o);
+  const double n = double(fits.nodes.size());
+  // Below the LU's 8 n² bytes: refused before the rows are found; at 9 n², refused after them (a
+  // room's node sees most of the room's nodes: its rows hold far more than the n²/24 entries that
+  // would fit beside the LU); with room for both: built.
+  for (const double bytes : {4 * n * n, 9 * n * n}) {
+    o.memory_bytes = std::size_t(bytes);
+    CHECK_THROWS_WITH(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o),
+                      Catch::Contains("nodes would need about") && Catch::Contains("raise --element-size"));
+  }
+  o.memory_bytes = std::size_t(1e10);
+  CHECK(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o).nodes.size() == fits.nodes.size());
+}
+
 TEST_CASE("annual reflections: the direction grid's first bounce against the exact one, within the estimate") {
   const GlazedRoom room(true);
   const VisibilityEngine engine(room.scene, GeometryMode::exact);
