@@ -20,6 +20,7 @@
 #include "geometry/ray_crossing.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
+#include "simulation/annual_coefficients.hpp"
 #include "simulation/dense_lu.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/pane_transmittance.hpp"
@@ -27,7 +28,6 @@
 #include "simulation/reciprocal_transport.hpp"
 #include "simulation/sensor_loop.hpp"
 #include "simulation/sunlit_elements.hpp"
-#include "simulation/annual_coefficients.hpp"
 
 namespace daylit {
 

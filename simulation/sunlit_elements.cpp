@@ -96,20 +96,45 @@ SunlitElements::SunlitElements(const std::vector<ConvexPiece>& pieces, const std
     pieces_.push_back(p);
   }
   if (pieces_.empty()) return;
+  // Pieces more than a quarter of everything across (a ground polygon around a building) are
+  // checked for every element; the grid covers the others, so that a large ground does not
+  // stretch its cells over the whole site and leave the building in one of them.
+  const double whole = std::max(u1 - u0, v1 - v0);
+  u0 = v0 = std::numeric_limits<double>::infinity();
+  u1 = v1 = -u0;
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    const Piece& p = pieces_[i];
+    if (std::max(p.u_max - p.u_min, p.v_max - p.v_min) > whole / 4) {
+      large_.push_back(std::uint32_t(i));
+      continue;
+    }
+    u0 = std::min(u0, p.u_min);
+    u1 = std::max(u1, p.u_max);
+    v0 = std::min(v0, p.v_min);
+    v1 = std::max(v1, p.v_max);
+  }
+  const std::size_t gridded = pieces_.size() - large_.size();
+  if (gridded == 0) return;
   // About one piece per cell, square cells, at most 256 a side.
   const double span = std::max({u1 - u0, v1 - v0, 1e-300});
-  const int side = std::clamp(int(std::ceil(std::sqrt(double(pieces_.size())))), 1, 256);
+  const int side = std::clamp(int(std::ceil(std::sqrt(double(gridded)))), 1, 256);
   cell_ = span / side;
   grid_u0_ = u0;
   grid_v0_ = v0;
   cells_u_ = std::clamp(int(std::ceil((u1 - u0) / cell_)), 1, side);
   cells_v_ = std::clamp(int(std::ceil((v1 - v0) / cell_)), 1, side);
   cells_.assign(std::size_t(cells_u_) * std::size_t(cells_v_), {});
+  std::size_t next_large = 0;
   for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    if (next_large < large_.size() && large_[next_large] == i) {
+      ++next_large;
+      continue;
+    }
     const Piece& p = pieces_[i];
     const int a1 = cell_of(p.u_max, grid_u0_, cells_u_), b1 = cell_of(p.v_max, grid_v0_, cells_v_);
     for (int a = cell_of(p.u_min, grid_u0_, cells_u_); a <= a1; ++a)
-      for (int b = cell_of(p.v_min, grid_v0_, cells_v_); b <= b1; ++b) cells_[std::size_t(a) * std::size_t(cells_v_) + std::size_t(b)].push_back(std::uint32_t(i));
+      for (int b = cell_of(p.v_min, grid_v0_, cells_v_); b <= b1; ++b)
+        cells_[std::size_t(a) * std::size_t(cells_v_) + std::size_t(b)].push_back(std::uint32_t(i));
   }
 }
 
@@ -118,8 +143,8 @@ int SunlitElements::cell_of(double x, double origin, int count) const noexcept {
 }
 
 void SunlitElements::candidates(double u0, double u1, double v0, double v1, std::vector<std::uint32_t>& out) const {
-  out.clear();
-  if (pieces_.empty()) return;
+  out = large_;
+  if (cells_.empty()) return;
   for (int a = cell_of(u0, grid_u0_, cells_u_); a <= cell_of(u1, grid_u0_, cells_u_); ++a)
     for (int b = cell_of(v0, grid_v0_, cells_v_); b <= cell_of(v1, grid_v0_, cells_v_); ++b) {
       const auto& cell = cells_[std::size_t(a) * std::size_t(cells_v_) + std::size_t(b)];

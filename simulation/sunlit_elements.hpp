@@ -72,7 +72,7 @@ class SunlitElements {
     double depth_max = 0;                               // its farthest point towards the sun (s·y)
   };
   // The pieces whose boxes across the beam may meet [u0, u1] × [v0, v1], by a uniform grid of
-  // cells over all of them, in index order.
+  // cells over all but the largest (large_, always listed), in index order.
   void candidates(double u0, double u1, double v0, double v1, std::vector<std::uint32_t>& out) const;
   int cell_of(double x, double origin, int count) const noexcept;
 
@@ -82,6 +82,7 @@ class SunlitElements {
   double grid_u0_ = 0, grid_v0_ = 0, cell_ = 1;
   int cells_u_ = 0, cells_v_ = 0;
   std::vector<std::vector<std::uint32_t>> cells_;
+  std::vector<std::uint32_t> large_;  // in index order
 };
 
 }  // namespace daylit

@@ -100,6 +100,21 @@ TEST_CASE("sunlit elements: a shadow's edge across the element leaves the closed
     for (double v : b) CHECK(v == Approx(1.0 / 6).epsilon(kRoundoff));
     CHECK(Sunlit({roof_over_half()}, {0.0})(el, {0, 0, 1}, 0)[1] == Approx(1.0 / 6).epsilon(kRoundoff));  // polygon 0 is "own": left out
   }
+  SECTION("a polygon far larger than the others (a site's ground, a canopy) is found for every element") {
+    // The roof among a hundred small tiles far away and a 2 km ground below; then a 2 km canopy
+    // above, which shades everything.
+    std::vector<Polygon> polygons{roof_over_half(), polygon({{-1000, -1000, -1}, {1000, -1000, -1}, {1000, 1000, -1}, {-1000, 1000, -1}}, "ground")};
+    for (int i = 0; i < 100; ++i) {
+      const double x = 50 + 2 * (i % 10), y = 50 + 2 * (i / 10);
+      polygons.push_back(polygon({{x, y, 1}, {x + 1, y, 1}, {x + 1, y + 1, 1}, {x, y + 1, 1}}, "tile"));
+    }
+    const Sunlit site(polygons, std::vector<double>(polygons.size(), 0.0));
+    const auto b = site(el, {0, 0, 1}, 99);
+    for (int k = 0; k < 3; ++k) CHECK(b[std::size_t(k)] == Approx(kLit[k]).margin(kRoundoff));
+    polygons.push_back(polygon({{-1000, -1000, 5}, {1000, -1000, 5}, {1000, 1000, 5}, {-1000, 1000, 5}}, "canopy"));
+    const Sunlit covered(polygons, std::vector<double>(polygons.size(), 0.0));
+    for (double v : covered(el, {0, 0, 1}, 99)) CHECK(v == 0);
+  }
   SECTION("the side facing away from the sun gets nothing") {
     const Sunlit sunlit({}, {});
     for (double v : sunlit(el, {0, 0, -1}, 0)) CHECK(v == 0);
