@@ -1077,6 +1077,13 @@ struct MeshSolution {
   std::size_t entries = 0;  // of the rows of K
 };
 
+// Bytes as gigabytes with one decimal, for the messages of the memory guard.
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+  return text;
+}
+
 // Wall seconds since `start`, restarting it.
 double lap(std::chrono::steady_clock::time_point& start) {
   const auto now = std::chrono::steady_clock::now();
@@ -1481,11 +1488,6 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
   // Round 0 splits every element of the coarse mesh; each further round splits only what
   // local_refinement flags, and takes the rest of its rows from the round before (EarlierRows).
   RadiosityMesh coarse_mesh = t.mesh();
-  const auto gigabytes = [](double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
-    return std::string(text);
-  };
   if (opt.memory_bytes > 0) {
     const double elements = double(coarse_mesh.elements.size());
     const double needed = rows_bytes_estimate(double(coarse.entries), elements, 4 * elements, false);
@@ -1620,11 +1622,10 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
   // (ReflectionOptions::memory_bytes): checked before the rows are found, and with them after.
   const auto refuse_memory = [&](double bytes) {
     if (opt.memory_bytes == 0 || bytes <= double(opt.memory_bytes)) return;
-    char text[160];
-    std::snprintf(text, sizeof text, "%.1f GB for its dense LU and rows, more than the %.1f GB allowed",
-                  bytes / 1e9, double(opt.memory_bytes) / 1e9);
-    throw Error("the reflected components' operator of " + std::to_string(n) + " nodes would need about " + text +
-                ": raise --element-size");
+    std::string message = "the reflected components' operator of " + std::to_string(n) + " nodes would need about ";
+    message += gigabytes(bytes) + " for its dense LU and rows, more than the " + gigabytes(double(opt.memory_bytes));
+    message += " allowed: raise --element-size";
+    throw Error(message);
   };
   const double lu_bytes = 8.0 * double(n) * double(n);
   refuse_memory(lu_bytes);
