@@ -197,3 +197,28 @@ TEST_CASE("annual reflections: the sun's first bounce is reflected_components', 
     }
   }
 }
+
+TEST_CASE("annual reflections: the sun that came in by the window is counted in its group, the sun on the ground outside in the outdoors channel") {
+  // Without the ground polygon, every sunlit element is lit through the window: channel 0 holds
+  // all of the sun's reflected light and the outdoors channel (1) nothing, exactly. With it, the
+  // ground lit directly sends light in through the window too, counted as outdoors.
+  const Vec3 sun = normalized(Vec3{0.31, -0.8, 0.55});
+  const double e_dn = 1e5;
+  for (const bool ground : {false, true}) {
+    const GlazedRoom room(ground);
+    const VisibilityEngine engine(room.scene, GeometryMode::exact);
+    const ReflectionOperator op = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0));
+    const ReflectedHours r = reflected_light(room.scene, op, nullptr, 0, {0}, 1,
+                                             {HourLight{[](const Vec3&) { return 0.0; }, sun, e_dn, e_dn * sun.z}}, 0.0);
+    REQUIRE(r.channels == 2);
+    for (std::size_t s = 0; s < room.grid.sensors.size(); ++s) {
+      const float window = r.lux[s * r.channels], outdoors = r.lux[s * r.channels + 1];
+      INFO("ground " << ground << ", sensor " << s << ": window " << window << ", outdoors " << outdoors);
+      CHECK(window > 0);
+      if (ground)
+        CHECK(outdoors > 0);
+      else
+        CHECK(outdoors == 0);
+    }
+  }
+}
