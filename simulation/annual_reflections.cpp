@@ -167,14 +167,11 @@ void sun_first_bounce(const Scene& scene, const ReflectionOperator& op, const st
                       std::vector<Eigen::MatrixXd>& out) {
   tbb::parallel_for(std::size_t(0), hours.size(), [&](std::size_t h) {
     const SunHour& hour = hours[h];
-    std::vector<double> transmittance(scene.occluders.size(), 0.0);
-    for (const Aperture& a : scene.apertures) transmittance.push_back(ApertureTransmittance(a)(hour.sun));
-    const SunlitElements sunlit(pieces, transmittance, hour.sun, op.scale);
+    const SunlitElements sunlit(pieces, sun_transmittances(scene, hour.sun), hour.sun, op.scale);
     for (std::size_t i = 0; i < op.sides.size(); ++i) {
       const Vec3& n = op.nodes[3 * i].normal;
-      const double facing = dot(n, hour.sun);
-      if (!(facing > 0)) continue;
-      const double scale = hour.direct_normal_lux * facing * 3 / op.sides[i].area;
+      const double scale = sunlit.node_factor(op.sides[i], n, hour.direct_normal_lux);
+      if (!(scale > 0)) continue;
       for (const SunlitPart& part : sunlit.parts(op.sides[i], n, op.side_polygon[i])) {
         const std::size_t channel = part.outer_polygon == SunlitPart::kDirect
                                         ? groups
@@ -246,9 +243,7 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   const Columns columns{fine.vertices(), coarse.vertices()};
   const std::size_t apertures = scene.apertures.size();
   // The polygons that block or filter the sun, as the operators' sides name them.
-  std::vector<Polygon> polygons = scene.occluders;
-  for (const Aperture& a : scene.apertures) polygons.push_back(a.polygon);
-  const std::vector<ConvexPiece> sun_pieces = sun_blocker_pieces(polygons);
+  const std::vector<ConvexPiece> sun_pieces = sun_blocker_pieces(scene);
 
   // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun.
   struct Mesh {

@@ -20,7 +20,6 @@
 #include "geometry/ray_crossing.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
-#include "simulation/annual_coefficients.hpp"
 #include "simulation/dense_lu.hpp"
 #include "simulation/element_transport.hpp"
 #include "simulation/pane_transmittance.hpp"
@@ -164,10 +163,9 @@ class Transport {
     build_luminaire_engines();
     build_sky_box(all);
     if (options.sun && options.sun->direct_normal > 0 && options.sun->direction.z > 0) {
-      std::vector<double> transmittance(scene.occluders.size(), 0.0);
-      for (const Aperture& a : scene.apertures) transmittance.push_back(ApertureTransmittance(a)(options.sun->direction));
       sun_pieces_ = sun_blocker_pieces(polygons_);
-      sunlit_ = std::make_unique<SunlitElements>(sun_pieces_, transmittance, options.sun->direction, scale_);
+      sunlit_ = std::make_unique<SunlitElements>(sun_pieces_, sun_transmittances(scene, options.sun->direction),
+                                                 options.sun->direction, scale_);
     }
   }
 
@@ -177,7 +175,7 @@ class Transport {
     if (!sunlit_) return {0, 0, 0};
     const Vec3 n = side == 0 ? el.normal : -1.0 * el.normal;
     std::array<double, 3> e = sunlit_->basis_integrals(el, n, mesh_.surfaces[el.surface].occluder);
-    const double scale = options_.sun->direct_normal * dot(n, options_.sun->direction) * 3 / el.area;
+    const double scale = sunlit_->node_factor(el, n, options_.sun->direct_normal);
     for (double& v : e) v *= scale;
     return e;
   }
@@ -1040,7 +1038,7 @@ double median_room_span(const std::vector<Polygon>& surfaces, const SensorGrid& 
 double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept) {
   if (!(elements > 0)) return 0;
   const double growth = next_elements / elements;
-  return 2 * 24 * entries * growth * growth + (earlier_kept ? 24 * entries : 0.0);
+  return kRowBytesPerEntry * entries * (2 * growth * growth + (earlier_kept ? 1 : 0));
 }
 
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {
@@ -1670,7 +1668,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
 
   std::size_t entries = 0;
   for (const TransportRow& row : rows) entries += row.size();
-  refuse_memory(lu_bytes + 24.0 * double(entries));
+  refuse_memory(lu_bytes + kRowBytesPerEntry * double(entries));
   // (I − ρK)ᵀ, factorised in place.
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(Eigen::Index(n), Eigen::Index(n));
   std::vector<double> rho(n, 0.0);

@@ -163,14 +163,15 @@ struct ReflectionResult {
 // (two sensors 0.5 m apart in the room sample gave 0.1 m elements: 7,956 of them and 30 s,
 // against 876 and 2 s for its 80-sensor grid, for IRC the same to 0.2 %). No grid with an
 // extent: a fifth of the box around the apertures and the sensors.
-// The peak bytes of a round's rows of K (found, copied for the solver, the round before's kept
-// beside them): 2 × 24 bytes per entry of its rows (an entry is 16 bytes, a vector grown by
-// push_back holds up to half again as many) plus the earlier rows. `entries`: the earlier mesh's
-// count over `elements` elements; the new mesh has `next_elements`, each row seeing that many
-// times more elements, and that many times more rows.
-double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept);
-
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids);
+
+// The peak bytes of a round's rows of K (found, copied for the solver, the round before's kept
+// beside them): 2 × kRowBytesPerEntry per entry of its rows (an entry is 16 bytes, a vector grown
+// by push_back holds up to half again as many) plus the earlier rows. `entries`: the earlier
+// mesh's count over `elements` elements; the new mesh has `next_elements`, each row seeing that
+// many times more elements, and that many times more rows.
+inline constexpr double kRowBytesPerEntry = 24;
+double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept);
 
 // The discrete system of a scene at its first mesh (elements of the asked size, both sides of
 // every surface, whether or not light from them reaches a sensor), for tests and audits: the mesh, and per

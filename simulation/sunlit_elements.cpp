@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "illumination/orthonormal_basis.hpp"
+#include "simulation/annual_coefficients.hpp"
 
 namespace daylit {
 
@@ -67,6 +68,18 @@ std::vector<ConvexPiece> sun_blocker_pieces(const std::vector<Polygon>& polygons
   std::vector<ConvexPiece> out;
   for (std::size_t i = 0; i < polygons.size(); ++i)
     for (ConvexPiece& c : convex_pieces(polygons[i], i)) out.push_back(std::move(c));
+  return out;
+}
+
+std::vector<ConvexPiece> sun_blocker_pieces(const Scene& scene) {
+  std::vector<Polygon> polygons = scene.occluders;
+  for (const Aperture& a : scene.apertures) polygons.push_back(a.polygon);
+  return sun_blocker_pieces(polygons);
+}
+
+std::vector<double> sun_transmittances(const Scene& scene, const Vec3& sun) {
+  std::vector<double> out(scene.occluders.size(), 0.0);
+  for (const Aperture& a : scene.apertures) out.push_back(ApertureTransmittance(a)(sun));
   return out;
 }
 

@@ -23,6 +23,7 @@
 // the light on the element exactly; a node may get a negative value where the light is bunched
 // against the opposite edge (φ_k ≥ −1/3), as any L² projection of a step.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -37,6 +38,11 @@ namespace daylit {
 
 // Every polygon's convex pieces (geometry/convex_pieces.hpp), found once for any number of suns.
 std::vector<ConvexPiece> sun_blocker_pieces(const std::vector<Polygon>& polygons);
+// The same for a scene's polygons in the order the reflected components number them: the
+// occluders, then every aperture's pane.
+std::vector<ConvexPiece> sun_blocker_pieces(const Scene& scene);
+// Their transmittances along `sun` in that order: 0 for an occluder, each pane's τ or T(|a·s|).
+std::vector<double> sun_transmittances(const Scene& scene, const Vec3& sun);
 
 // A part of an element side's light: where the beam passed the same panes. `outer_polygon`: the
 // pane it passed farthest from the element (the window the light came in by; the largest height
@@ -61,6 +67,11 @@ class SunlitElements {
   // where it faces away from the sun), for k = 0, 1, 2, polygon `own` (the element's surface) left
   // out. The first bounce at node k is E_dn (n·s) (3/A) times the k-th.
   std::array<double, 3> basis_integrals(const RadiosityElement& element, const Vec3& n, std::size_t own) const;
+  // E_dn (n·s) 3/A: times an integral, the first bounce at that node (the L² projection); 0 for
+  // a side facing away.
+  double node_factor(const RadiosityElement& element, const Vec3& n, double direct_normal) const noexcept {
+    return direct_normal * std::max(dot(n, sun_), 0.0) * 3 / element.area;
+  }
   // The same, part by part, summed by the outermost pane passed (the window the light came by).
   std::vector<SunlitPart> parts(const RadiosityElement& element, const Vec3& n, std::size_t own) const;
 
