@@ -158,21 +158,28 @@ int run_annual(AnnualCommandOptions opt) {
       sensors = lit.back();
       lit.pop_back();
     };
-  for (std::size_t gi = 0; gi < model.grids.size(); ++gi) {
+  // The reflected hours of a batch of grids at a time (annual_reflections.hpp: the per-node work
+  // once per batch), each grid's released once its metrics are taken.
+  std::vector<std::optional<ReflectedHours>> reflected(model.grids.size());
+  std::vector<std::vector<std::size_t>> batches;
+  if (fine_op) batches = reflected_batches(*fine_op, sky.hours.size(), groups.names.size(), kReflectedBatchBytes);
+  for (std::size_t gi = 0, batch = 0; gi < model.grids.size(); ++gi) {
     const SensorGrid& grid = model.grids[gi];
     const SensorGrid& block = *blocks[gi];
     const auto tg = std::chrono::steady_clock::now();
-    std::optional<ReflectedHours> reflected;
-    if (fine_op) {
-      reflected = reflected_hours(model.scene, *fine_op, &*coarse_op, gi, groups.group_of_aperture, groups.names.size(), sky,
-                                  opt.reflections.ground_reflectance);
-      reflected_hours_time += reflected->time_s;
+    if (batch < batches.size() && batches[batch].front() == gi) {
+      ReflectedGrids found = reflected_hours(model.scene, *fine_op, &*coarse_op, batches[batch], groups.group_of_aperture,
+                                             groups.names.size(), sky, opt.reflections.ground_reflectance);
+      reflected_hours_time += found.time_s;
+      for (std::size_t i = 0; i < batches[batch].size(); ++i) reflected[batches[batch][i]] = std::move(found.grids[i]);
+      ++batch;
     }
     ProgressBar bar("annual " + grid.name, block.sensors.size(), show_progress);
     AnnualGridReport g;
     g.grid = &grid;
     g.result = annual_grid(engine, model.scene, block, sky, opt.annual, [&](std::size_t done) { bar.update(done); },
-                           reflected ? &*reflected : nullptr, whole_grid, direct.get());
+                           reflected[gi] ? &*reflected[gi] : nullptr, whole_grid, direct.get());
+    reflected[gi].reset();
     const auto tc = std::chrono::steady_clock::now();
     shards.push_back({grid.name, grid.sensors.size(), {std::chrono::duration<double>(tc - tg).count()}});
     if (mpi::several()) {

@@ -211,9 +211,9 @@ void DirectionGrid::interpolation_at(double alt, double az, std::size_t vertex_o
   weight_out[3] = a * b;
 }
 
-ReflectedHours reflected_hours(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
-                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
-                               const AnnualSky& sky, double ground_reflectance) {
+ReflectedGrids reflected_hours(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
+                               const std::vector<std::size_t>& grid_indices, const std::vector<int>& group_of_aperture,
+                               std::size_t groups, const AnnualSky& sky, double ground_reflectance) {
   std::vector<HourLight> lights(sky.hours.size());
   for (std::size_t h = 0; h < sky.hours.size(); ++h) {
     const AnnualHour& hour = sky.hours[h];
@@ -225,12 +225,29 @@ ReflectedHours reflected_hours(const Scene& scene, const ReflectionOperator& fin
     lights[h].direct_normal_lux = hour.direct_normal_lux;
     lights[h].horizontal_lux = hour.diffuse_horizontal_lux + hour.direct_normal_lux * std::max(0.0, hour.sun.z);
   }
-  return reflected_light(scene, fine, coarse, grid_index, group_of_aperture, groups, lights, ground_reflectance);
+  return reflected_light(scene, fine, coarse, grid_indices, group_of_aperture, groups, lights, ground_reflectance);
 }
 
-ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fine_op, const ReflectionOperator* coarse_op,
-                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
-                               const std::vector<HourLight>& sky_hours, double ground_reflectance) {
+std::vector<std::vector<std::size_t>> reflected_batches(const ReflectionOperator& op, std::size_t hours, std::size_t groups,
+                                                        std::size_t max_bytes) {
+  std::vector<std::vector<std::size_t>> batches;
+  std::size_t bytes = 0;
+  for (std::size_t g = 0; g < op.sensor_ground_direct.size(); ++g) {
+    // ReflectedHours: a float per sensor, hour and channel (groups + 1), and one for the estimate.
+    const std::size_t grid_bytes = op.sensor_ground_direct[g].size() * hours * (groups + 2) * sizeof(float);
+    if (batches.empty() || bytes + grid_bytes > max_bytes) {
+      batches.emplace_back();
+      bytes = 0;
+    }
+    batches.back().push_back(g);
+    bytes += grid_bytes;
+  }
+  return batches;
+}
+
+ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fine_op, const ReflectionOperator* coarse_op,
+                               const std::vector<std::size_t>& grid_indices, const std::vector<int>& group_of_aperture,
+                               std::size_t groups, const std::vector<HourLight>& sky_hours, double ground_reflectance) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());  // Eigen's products: the run's threads
   const DirectionGrid fine;
@@ -245,27 +262,33 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   // The polygons that block or filter the sun, as the operators' sides name them.
   const std::vector<ConvexPiece> sun_pieces = sun_blocker_pieces(scene);
 
-  // What each operator needs: its nodes' columns, the sensors' D = W Q, W itself for the sun.
+  // What each operator needs: its nodes' columns (once, whatever the grids), each grid's sensors'
+  // D = W Q, W itself for the sun.
   struct Mesh {
     const ReflectionOperator* op;
-    std::vector<RowMatrix> d;
+    std::vector<std::vector<RowMatrix>> d;  // per grid of the batch, per channel
   };
   std::vector<Mesh> meshes;
   for (const ReflectionOperator* op : {&fine_op, coarse_op}) {
     if (op == nullptr) continue;
     Mesh m{op, {}};
     const std::vector<NodeColumns> q = node_columns(scene, *op, fine, coarse, group_of_aperture, groups, columns);
-    m.d = sensor_columns(*op, grid_index, q, group_of_aperture, groups, columns, apertures);
+    for (const std::size_t grid_index : grid_indices)
+      m.d.push_back(sensor_columns(*op, grid_index, q, group_of_aperture, groups, columns, apertures));
     meshes.push_back(std::move(m));
   }
 
-  ReflectedHours out;
-  out.sensors = std::size_t(meshes.front().d.front().rows());
-  out.hours = sky_hours.size();
-  out.channels = groups + 1;
-  out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
-  out.estimate.assign(out.sensors * out.hours, 0.0f);
-  out.outdoors = fine_op.sensor_outdoors[grid_index];
+  ReflectedGrids result;
+  for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
+    ReflectedHours out;
+    out.sensors = std::size_t(meshes.front().d[gi].front().rows());
+    out.hours = sky_hours.size();
+    out.channels = groups + 1;
+    out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
+    out.estimate.assign(out.sensors * out.hours, 0.0f);
+    out.outdoors = fine_op.sensor_outdoors[grid_indices[gi]];
+    result.grids.push_back(std::move(out));
+  }
 
   std::vector<std::size_t> lit;
   for (std::size_t h = 0; h < sky_hours.size(); ++h)
@@ -280,7 +303,8 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
   // Blocks of hours, a column per hour: the sky on the fine grid's and on the coarse grid's
   // directions and the far ground; the sun's first bounce per node and hour, exact. The fine
   // mesh takes both grids' skies (their difference is one term of the estimate); the coarse mesh,
-  // compared with the fine one under the same sky, only the fine grid's.
+  // compared with the fine one under the same sky, only the fine grid's. What does not depend on
+  // the sensors (the skies, the sun's first bounce) is found once for every grid of the batch.
   const Eigen::Index nf = Eigen::Index(columns.fine), nc = Eigen::Index(columns.coarse);
   const Eigen::Index coarse_at = Eigen::Index(columns.coarse_at()), ground_at = Eigen::Index(columns.ground_at());
   constexpr std::size_t kBlock = 128;
@@ -297,56 +321,65 @@ ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fin
         sky_coarse(Eigen::Index(v), c) = sky_fine(Eigen::Index(coarse_to_fine(v)), c);
       ground(c) = ground_reflectance * hour.horizontal_lux / kPi;
     });
-    std::vector<Eigen::MatrixXd> totals_fine, totals_coarse;  // per mesh: sensors × count
+    std::vector<SunHour> suns;
+    for (std::size_t b = 0; b < count; ++b) {
+      const HourLight& hour = sky_hours[lit[start + b]];
+      // A sun below the horizon lights nothing (the point sun's first bounce: sunlit_elements.hpp).
+      if (hour.direct_normal_lux > 0 && hour.sun.z > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
+    }
+    // per mesh, per grid of the batch: sensors × count
+    std::vector<std::vector<Eigen::MatrixXd>> totals_fine(meshes.size()), totals_coarse(meshes.size());
     for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
       const Mesh& m = meshes[mi];
       const bool both_grids = mi == 0;
       const std::size_t n = m.op->nodes.size();
       std::vector<Eigen::MatrixXd> sun(groups + 1, Eigen::MatrixXd::Zero(Eigen::Index(n), hours));
-      std::vector<SunHour> suns;
-      for (std::size_t b = 0; b < count; ++b) {
-        const HourLight& hour = sky_hours[lit[start + b]];
-        // A sun below the horizon lights nothing (the point sun's first bounce: sunlit_elements.hpp).
-        if (hour.direct_normal_lux > 0 && hour.sun.z > 0) suns.push_back({hour.sun, hour.direct_normal_lux, Eigen::Index(b)});
-      }
       if (!suns.empty()) sun_first_bounce(scene, *m.op, sun_pieces, group_of_aperture, groups, suns, sun);
-      Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
-      if (both_grids) total_coarse = total_fine;
-      for (std::size_t g = 0; g <= groups; ++g) {
-        const RowMatrix& d = m.d[g];
-        Eigen::MatrixXd r_fine = d.leftCols(nf) * sky_fine + d.col(ground_at) * ground, r_coarse;
-        if (both_grids) r_coarse = d.middleCols(coarse_at, nc) * sky_coarse + d.col(ground_at) * ground;
-        // The sun's part: W times the sun's first bounce, on the nodes the sun reaches in the block
-        // (a window's sun patch: most nodes get none).
-        std::vector<Eigen::Index> lit_nodes;
+      // The nodes the sun reaches in the block, per channel (a window's sun patch: most nodes get none).
+      std::vector<std::vector<Eigen::Index>> lit_nodes(groups + 1);
+      for (std::size_t g = 0; g <= groups; ++g)
         for (Eigen::Index k = 0; k < Eigen::Index(n); ++k)
-          if (!sun[g].row(k).isZero(0)) lit_nodes.push_back(k);
-        if (!lit_nodes.empty()) {
-          const Eigen::Map<const RowMatrix> w(m.op->response[grid_index].data(), Eigen::Index(out.sensors), Eigen::Index(n));
-          const Eigen::MatrixXd rs = w(Eigen::all, lit_nodes) * sun[g](lit_nodes, Eigen::all);
-          r_fine += rs;
-          if (both_grids) r_coarse += rs;
+          if (!sun[g].row(k).isZero(0)) lit_nodes[g].push_back(k);
+      for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
+        ReflectedHours& out = result.grids[gi];
+        Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
+        if (both_grids) total_coarse = total_fine;
+        for (std::size_t g = 0; g <= groups; ++g) {
+          const RowMatrix& d = m.d[gi][g];
+          Eigen::MatrixXd r_fine = d.leftCols(nf) * sky_fine + d.col(ground_at) * ground, r_coarse;
+          if (both_grids) r_coarse = d.middleCols(coarse_at, nc) * sky_coarse + d.col(ground_at) * ground;
+          // The sun's part: W times the sun's first bounce on the nodes it reaches.
+          if (!lit_nodes[g].empty()) {
+            const Eigen::Map<const RowMatrix> w(m.op->response[grid_indices[gi]].data(), Eigen::Index(out.sensors),
+                                                Eigen::Index(n));
+            const Eigen::MatrixXd rs = w(Eigen::all, lit_nodes[g]) * sun[g](lit_nodes[g], Eigen::all);
+            r_fine += rs;
+            if (both_grids) r_coarse += rs;
+          }
+          total_fine += r_fine;
+          if (both_grids) total_coarse += r_coarse;
+          if (mi == 0)
+            for (std::size_t s = 0; s < out.sensors; ++s)
+              for (std::size_t b = 0; b < count; ++b)
+                out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r_fine(Eigen::Index(s), Eigen::Index(b)));
         }
-        total_fine += r_fine;
-        if (both_grids) total_coarse += r_coarse;
-        if (mi == 0)
-          for (std::size_t s = 0; s < out.sensors; ++s)
-            for (std::size_t b = 0; b < count; ++b)
-              out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r_fine(Eigen::Index(s), Eigen::Index(b)));
+        totals_fine[mi].push_back(std::move(total_fine));
+        totals_coarse[mi].push_back(std::move(total_coarse));
       }
-      totals_fine.push_back(std::move(total_fine));
-      totals_coarse.push_back(std::move(total_coarse));
     }
-    for (std::size_t s = 0; s < out.sensors; ++s)
-      for (std::size_t b = 0; b < count; ++b) {
-        const Eigen::Index i = Eigen::Index(s), c = Eigen::Index(b);
-        double e = std::abs(totals_fine[0](i, c) - totals_coarse[0](i, c));
-        if (totals_fine.size() > 1) e += std::abs(totals_fine[0](i, c) - totals_fine[1](i, c));
-        out.estimate[s * out.hours + lit[start + b]] = float(e);
-      }
+    for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
+      ReflectedHours& out = result.grids[gi];
+      for (std::size_t s = 0; s < out.sensors; ++s)
+        for (std::size_t b = 0; b < count; ++b) {
+          const Eigen::Index i = Eigen::Index(s), c = Eigen::Index(b);
+          double e = std::abs(totals_fine[0][gi](i, c) - totals_coarse[0][gi](i, c));
+          if (meshes.size() > 1) e += std::abs(totals_fine[0][gi](i, c) - totals_fine[1][gi](i, c));
+          out.estimate[s * out.hours + lit[start + b]] = float(e);
+        }
+    }
   }
-  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return out;
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
 }
 
 }  // namespace daylit

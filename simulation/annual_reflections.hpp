@@ -64,6 +64,13 @@ struct ReflectedHours {
   std::vector<float> lux;                            // [(sensor × hours + hour) × channels]
   std::vector<float> estimate;                       // [sensor × hours]: the error estimate, all channels
   std::vector<char> outdoors;                        // [sensor]: sees the sky or far ground directly
+};
+
+// The reflected hours of several grids, found together: what does not depend on the sensors (each
+// node's columns of the direction grids, the skies, the sun's first bounce on the elements) once
+// for all of them.
+struct ReflectedGrids {
+  std::vector<ReflectedHours> grids;  // in the order of the grid indices asked for
   double time_s = 0;
 };
 
@@ -76,16 +83,26 @@ struct HourLight {
 };
 
 // `fine`: the operator of the asked mesh; `coarse`: of a mesh twice as coarse (nullptr: no mesh
-// estimate). `grid_index`: which of the operator's grids. `group_of_aperture`, `groups`: the
+// estimate). `grid_indices`: which of the operators' grids. `group_of_aperture`, `groups`: the
 // window groups (annual_coefficients.hpp).
-ReflectedHours reflected_light(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
-                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
-                               const std::vector<HourLight>& hours, double ground_reflectance);
+ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
+                               const std::vector<std::size_t>& grid_indices, const std::vector<int>& group_of_aperture,
+                               std::size_t groups, const std::vector<HourLight>& hours, double ground_reflectance);
 
 // The same for the hours of an annual sky: the Perez luminance (clamps included) of each hour with
 // a sky, its sun and E_h = E_dh + E_dn sin(altitude).
-ReflectedHours reflected_hours(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
-                               std::size_t grid_index, const std::vector<int>& group_of_aperture, std::size_t groups,
-                               const AnnualSky& sky, double ground_reflectance);
+ReflectedGrids reflected_hours(const Scene& scene, const ReflectionOperator& fine, const ReflectionOperator* coarse,
+                               const std::vector<std::size_t>& grid_indices, const std::vector<int>& group_of_aperture,
+                               std::size_t groups, const AnnualSky& sky, double ground_reflectance);
+
+// The operator's grids in order, in consecutive batches whose ReflectedHours over `hours` hours
+// take at most `max_bytes` together (a grid larger than that alone): each batch is one call of
+// reflected_light, so that a model of many small grids (a room each) does its per-node work once
+// while the memory held stays bounded.
+// What the CLI lets a batch hold: a gigabyte, about the hourly arrays of 6,000 sensors with one
+// window group (the grid of one large open-plan floor), beyond what one grid alone needed before.
+inline constexpr std::size_t kReflectedBatchBytes = std::size_t(1) << 30;
+std::vector<std::vector<std::size_t>> reflected_batches(const ReflectionOperator& op, std::size_t hours, std::size_t groups,
+                                                        std::size_t max_bytes);
 
 }  // namespace daylit

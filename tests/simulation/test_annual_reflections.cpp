@@ -134,9 +134,9 @@ TEST_CASE("annual reflections: the direction grid's first bounce against the exa
 
   SECTION("a uniform sky: the interpolant is exact, what is left is the product rule's error") {
     const std::vector<double> exact = operator_uniform_sky(room.scene, op, o.ground_reflectance);
-    const ReflectedHours r = reflected_light(room.scene, op, nullptr, 0, group_of_aperture, 1,
+    const ReflectedHours r = reflected_light(room.scene, op, nullptr, {0}, group_of_aperture, 1,
                                              {HourLight{[](const Vec3&) { return 1.0; }, {0, 0, 1}, 0, kPi}},
-                                             o.ground_reflectance);
+                                             o.ground_reflectance).grids.front();
     for (std::size_t s = 0; s < exact.size(); ++s) {
       INFO("sensor " << s << ": grid " << total(r, s, 0) << ", exact " << exact[s]);
       // float results (the hourly arrays are float32): 1e-6 relative; the rule's own error is below that.
@@ -150,9 +150,9 @@ TEST_CASE("annual reflections: the direction grid's first bounce against the exa
     const ReflectionResult solved = reflected_components(room.scene, room.reflectance, engine, {&room.grid}, oc);
     const double e_out = 7 * kPi / 9;
     const ReflectedHours r = reflected_light(
-        room.scene, op, nullptr, 0, group_of_aperture, 1,
+        room.scene, op, nullptr, {0}, group_of_aperture, 1,
         {HourLight{[](const Vec3& u) { return u.z > 0 ? (1 + 2 * u.z) / 3 : 0.0; }, {0, 0, 1}, 0, e_out}},
-        o.ground_reflectance);
+        o.ground_reflectance).grids.front();
     for (std::size_t s = 0; s < room.grid.sensors.size(); ++s) {
       const double solved_lux = (solved.grids[0].erc_percent[s] + solved.grids[0].irc_percent[s]) * e_out / 100;
       const double error = std::abs(total(r, s, 0) - solved_lux);
@@ -183,9 +183,9 @@ TEST_CASE("annual reflections: the sun's first bounce is reflected_components', 
     os.light_horizontal = e_dn * sun.z;
     os.sun = ReflectionOptions::Sun{sun, e_dn};
     const ReflectionResult solved = reflected_components(room.scene, room.reflectance, engine, {&room.grid}, os);
-    const ReflectedHours r = reflected_light(room.scene, op, nullptr, 0, {0}, 1,
+    const ReflectedHours r = reflected_light(room.scene, op, nullptr, {0}, {0}, 1,
                                              {HourLight{[](const Vec3&) { return 0.0; }, sun, e_dn, e_dn * sun.z}},
-                                             o.ground_reflectance);
+                                             o.ground_reflectance).grids.front();
     for (std::size_t s = 0; s < room.grid.sensors.size(); ++s) {
       const double solved_lux = (solved.grids[0].erc_percent[s] + solved.grids[0].irc_percent[s]) * os.light_horizontal / 100;
       const double error = std::abs(total(r, s, 0) - solved_lux);
@@ -208,8 +208,8 @@ TEST_CASE("annual reflections: the sun that came in by the window is counted in 
     const GlazedRoom room(ground);
     const VisibilityEngine engine(room.scene, GeometryMode::exact);
     const ReflectionOperator op = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0));
-    const ReflectedHours r = reflected_light(room.scene, op, nullptr, 0, {0}, 1,
-                                             {HourLight{[](const Vec3&) { return 0.0; }, sun, e_dn, e_dn * sun.z}}, 0.0);
+    const ReflectedHours r = reflected_light(room.scene, op, nullptr, {0}, {0}, 1,
+                                             {HourLight{[](const Vec3&) { return 0.0; }, sun, e_dn, e_dn * sun.z}}, 0.0).grids.front();
     REQUIRE(r.channels == 2);
     for (std::size_t s = 0; s < room.grid.sensors.size(); ++s) {
       const float window = r.lux[s * r.channels], outdoors = r.lux[s * r.channels + 1];
@@ -220,5 +220,40 @@ TEST_CASE("annual reflections: the sun that came in by the window is counted in 
       else
         CHECK(outdoors == 0);
     }
+  }
+}
+
+TEST_CASE("annual reflections: grids found together give each grid what it gets alone, bit for bit") {
+  // The per-node work (the direction grids' columns, the sun's first bounce on the elements) is
+  // shared by the grids of a batch; what each sensor gets must not depend on which grids share it.
+  const GlazedRoom room(true);
+  SensorGrid half = room.grid;
+  half.name = "half";
+  half.sensors.resize(room.grid.sensors.size() / 2);
+  for (Sensor& s : half.sensors) s.position.z += 0.3;
+  const VisibilityEngine engine(room.scene, GeometryMode::exact);
+  const ReflectionOperator op = reflection_operator(room.scene, room.reflectance, engine, {&room.grid, &half}, options(1.0));
+  const Vec3 sun = normalized(Vec3{0.31, -0.8, 0.55});
+  const std::vector<HourLight> hours{
+      HourLight{[](const Vec3& u) { return u.z > 0 ? 1000 * (1 + 2 * u.z) / 3 : 0.0; }, sun, 5e4, 5e4 * sun.z + 2000},
+      HourLight{},  // a dark hour
+      HourLight{[](const Vec3& u) { return u.z > 0 ? 300.0 : 0.0; }, {0, 0, 1}, 0, 300 * kPi}};
+  const ReflectedGrids together = reflected_light(room.scene, op, nullptr, {0, 1}, {0}, 1, hours, 0.2);
+  REQUIRE(together.grids.size() == 2);
+  for (const std::size_t g : {0, 1}) {
+    const ReflectedHours alone = reflected_light(room.scene, op, nullptr, {g}, {0}, 1, hours, 0.2).grids.front();
+    INFO("grid " << g);
+    CHECK(together.grids[g].sensors == (g == 0 ? room.grid.sensors.size() : half.sensors.size()));
+    CHECK(together.grids[g].lux == alone.lux);
+    CHECK(together.grids[g].estimate == alone.estimate);
+    CHECK(together.grids[g].outdoors == alone.outdoors);
+  }
+
+  SECTION("batches follow the grids' order and hold at most the bytes asked, a larger grid alone") {
+    // Per grid: sensors × hours × (groups + 2) floats.
+    const std::size_t full = room.grid.sensors.size() * 3 * 3 * sizeof(float), part = half.sensors.size() * 3 * 3 * sizeof(float);
+    CHECK(reflected_batches(op, 3, 1, full + part) == std::vector<std::vector<std::size_t>>{{0, 1}});
+    CHECK(reflected_batches(op, 3, 1, full + part - 1) == std::vector<std::vector<std::size_t>>{{0}, {1}});
+    CHECK(reflected_batches(op, 3, 1, 1) == std::vector<std::vector<std::size_t>>{{0}, {1}});
   }
 }
