@@ -609,7 +609,9 @@ struct VisibilityEngine::Impl {
     return best;
   }
 
-  // The occluder pieces that may hide part of w from p, in the order of subtraction (rank). The
+  // The occluder pieces that may hide part of w from p, in the order of subtraction: as built
+  // (rank), or front to back (by their boxes' distance from p, ties by rank: one sort, where a
+  // sort by rank and then a stable one by distance, which gives the same order, cost twice). The
   // hierarchy is walked nearest box first, so that what is near the receiver (its own room's walls)
   // comes first; in the exact modes each of the first kCoverTries polygons met is tested for
   // hiding all of w (covers), and the walk stops when one does: returns true, and `out` is then
@@ -625,7 +627,13 @@ struct VisibilityEngine::Impl {
     const bool try_cover = mode != GeometryMode::floating;
     const bool horizon = options.clip_to_horizon, beyond = options.occluders_beyond;
     const std::vector<CullPlane> planes = cone_planes(p, n, w, sh, options);
-    std::vector<std::pair<int, const ConvexPiece*>> found;
+    struct Found {
+      double distance2;  // of the piece's box from p (front to back), else 0
+      int rank;
+      const ConvexPiece* piece;
+    };
+    const bool front_to_back = order_of_subtraction == SubtractionOrder::front_to_back;
+    std::vector<Found> found;
     std::size_t tried[kCoverTries];
     int tries = 0;
     int stack[128];
@@ -653,7 +661,7 @@ struct VisibilityEngine::Impl {
         }
         ++counters.occluders_tested;
         if (!survives<Signs>(o, p, n, w, sh, horizon, beyond)) continue;
-        found.emplace_back(rank[i], &o);
+        found.push_back({front_to_back ? occluder_boxes[order[i]].distance2(p) : 0.0, rank[i], &o});
         if (nearest.size() < kNearest) nearest.push_back(&o);
         if (!try_cover || tries == kCoverTries || std::find(tried, tried + tries, o.source) != tried + tries) continue;
         tried[tries++] = o.source;
@@ -661,8 +669,10 @@ struct VisibilityEngine::Impl {
         if (patch.testable && covers<Signs>(patch, p, w, sh, beyond)) return true;
       }
     }
-    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& f : found) out.push_back(f.second);
+    std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+      return a.distance2 < b.distance2 || (a.distance2 == b.distance2 && a.rank < b.rank);
+    });
+    for (const Found& f : found) out.push_back(f.piece);
     return false;
   }
 
@@ -735,12 +745,6 @@ struct VisibilityEngine::Impl {
     }
     const bool reference = mode == GeometryMode::rational;
     const bool front_to_back = order_of_subtraction == SubtractionOrder::front_to_back;
-    if (front_to_back) {
-      std::vector<std::pair<double, const ConvexPiece*>> by_distance;
-      for (const ConvexPiece* o : blockers) by_distance.emplace_back(occluder_boxes[std::size_t(o - occluders.data())].distance2(p), o);
-      std::stable_sort(by_distance.begin(), by_distance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (std::size_t i = 0; i < blockers.size(); ++i) blockers[i] = by_distance[i].second;
-    }
     std::vector<int> pane;              // per blocker, with other apertures' panes among them
     std::vector<std::uint32_t> front;   // the apertures whose panes lie in front, by bit
     if (panes) collect_panes<Signs>(p, n, w, sh, options, blockers, pane, front, counters);
