@@ -1609,11 +1609,25 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
   for (std::size_t u = 0; u < nu; ++u)
     if (rho_max > 0 && t.live(mesh.elements[u / 6].surface, int(u / 3 % 2))) index[u] = std::int64_t(n++);
   if (n > max_nodes) {
-    std::string message = "the reflected components' operator would have ";
-    message += std::to_string(n);
-    message += " nodes (at most ";
-    message += std::to_string(max_nodes);
-    message += "): raise --element-size";
+    // Raising the element size helps only down to the mesh of each polygon's own triangles (split
+    // once for the reported mesh): a model of many surfaces (a building of a hundred rooms) may
+    // be over the limit at any size, and the message must say so rather than send the user
+    // raising it in vain.
+    ReflectionOptions coarsest = opt;
+    coarsest.element_size = 1e3 * t.scale();
+    Transport floor(scene, reflectance, engine, grids, coarsest, 2.0, false);
+    if (!coarse) floor.split_all();
+    std::size_t fewest = 0;
+    for (std::size_t u = 0; u < floor.unknowns(); ++u)
+      fewest += floor.live(floor.mesh().elements[u / 6].surface, int(u / 3 % 2));
+    std::string message = "the reflected components' operator would have " + std::to_string(n) + " nodes (at most " +
+                          std::to_string(max_nodes) + ")";
+    if (fewest > max_nodes)
+      message += ", and " + std::to_string(fewest) +
+                 " at any --element-size (each surface's own triangles): the model has too many reflecting surfaces "
+                 "for the dense operator; use --components sc, or give the rooms (or fewer surfaces) a run each";
+    else
+      message += ": raise --element-size (the coarsest mesh has " + std::to_string(fewest) + ")";
     throw Error(message);
   }
   // The dense matrix of the LU (8 n² bytes) must fit the memory allowed beside the rows of K

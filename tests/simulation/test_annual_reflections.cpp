@@ -107,6 +107,23 @@ TEST_CASE("reflection operator: a black room does no radiosity work, the far gro
   CHECK(op.sensor_ground[0][0] == 0);
 }
 
+TEST_CASE("reflection operator: one over the node limit says whether a larger element size would help") {
+  // The room at 1 m has n nodes; at a size larger than the room, f < n (each surface's own
+  // triangles, split once). A limit between them: raise the size; a limit below f: no size helps.
+  const test::WindowRoom room;
+  const VisibilityEngine engine(room.scene, GeometryMode::exact);
+  const std::size_t n = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0)).nodes.size();
+  const std::size_t f = reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1e6)).nodes.size();
+  REQUIRE(f < n);
+  CHECK_THROWS_WITH(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0), false, n - 1),
+                    Catch::Contains(std::to_string(n) + " nodes (at most " + std::to_string(n - 1) + ")") &&
+                        Catch::Contains("raise --element-size (the coarsest mesh has " + std::to_string(f) + ")"));
+  CHECK_THROWS_WITH(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0), false, f - 1),
+                    Catch::Contains("and " + std::to_string(f) + " at any --element-size") &&
+                        !Catch::Contains("raise --element-size"));
+  CHECK(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1.0), false, n).nodes.size() == n);
+}
+
 TEST_CASE("reflection operator: one whose dense LU and rows would not fit the memory allowed is refused, naming its size") {
   const test::WindowRoom room;
   const VisibilityEngine engine(room.scene, GeometryMode::exact);
