@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/image_options.hpp"
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
 #include "cli/number_checks.hpp"
@@ -52,6 +53,7 @@ struct DfOptions {
   double refine_tolerance = 0.01;  // DF percentage points of a cell's mean
   ReflectionCliOptions reflections;
   double median_diffuse_lux = 0;   // EN 17037's E_v,d,med; 0: no EN 17037 block
+  ImageCliOptions image_options;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -64,6 +66,7 @@ int run_df(DfOptions opt) {
   if (opt.reflections.all() && (opt.gradient || opt.refine))
     throw Error("--gradient and --refine concern the sky component alone; use them with --components sc");
   const SkyModel sky = parse_sky_model(opt.sky);
+  const ImageScale image_scale_asked = image_scale(opt.image_options);
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
                                                          : GeometryMode::exact;
@@ -178,8 +181,17 @@ int run_df(DfOptions opt) {
     write_csv(outputs.stage(opt.out), reports);
   }
   if (!opt.results.empty()) stage_honeybee_results(outputs, opt.results, reports);
-  if (!opt.image.empty())
-    for (const auto& r : reports) write_falsecolour_image(outputs.stage(image_path_for(opt.image, r.grid->name, reports.size())), r);
+  if (!opt.image.empty()) {
+    std::vector<const SensorGrid*> shown;
+    for (const auto& r : reports) shown.push_back(r.grid);
+    const std::vector<PlanDrawing> plans = plan_drawings(scene, shown);
+    for (std::size_t g = 0; g < reports.size(); ++g) {
+      GridReport r = reports[g];
+      r.plan = &plans[g];
+      r.scale = image_scale_asked;
+      write_falsecolour_image(outputs.stage(image_path_for(opt.image, r.grid->name, reports.size())), r);
+    }
+  }
 
   nlohmann::json summary;
   summary["sky"] = std::string(sky_model_name(sky));
@@ -238,6 +250,9 @@ int run_df(DfOptions opt) {
     }
     if (opt.median_diffuse_lux > 0)
       summary["grids"].back()["en17037_df_method"] = en17037_json(en17037_df_method(r.df_percent, opt.median_diffuse_lux));
+    summary["grids"].back()["breeam_hea_01"] =
+        breeam_json(breeam_hea01(*r.grid, r.df_percent, plan_drawing(scene, plan_height(*r.grid))),
+                    reflections ? "sc_percent + erc_percent + irc_percent" : "sc_percent (--components sc)");
     if (r.refinement) {
       const GridRefinement& f = *r.refinement;
       summary["grids"].back()["refinement"] = {
@@ -302,7 +317,10 @@ std::function<int()> add_df_command(CLI::App& app) {
   df->add_option("--results", opt->results,
                  "Existing folder for results in Honeybee's layout: <grid>.res (one DF % per line) and grids_info.json");
   df->add_option("--summary", opt->summary, "JSON file for per-grid statistics and what was left out");
-  df->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
+  CLI::Option* image = df->add_option("--image", opt->image,
+                                      "PNG plan image per grid (grid name appended when there are several), the walls "
+                                      "cut at the grid's height and the apertures drawn over the values");
+  add_image_options(*df, opt->image_options, image, "DF %");
   df->add_option("--geometry", opt->geometry,
                  "Visibility arithmetic: exact (default: certified intervals, rationals where needed), float (plain "
                  "doubles, for comparison) or rational (rationals throughout: a slow reference)")

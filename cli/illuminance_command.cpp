@@ -24,6 +24,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/image_options.hpp"
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
 #include "cli/number_checks.hpp"
@@ -66,6 +67,7 @@ struct IlluminanceOptions {
   CLI::Option *zenith_luminance_option = nullptr, *diffuse_horizontal_option = nullptr, *sun_zenith_option = nullptr;
   CLI::Option *direct_normal_option = nullptr, *diffuse_irradiance_option = nullptr, *direct_irradiance_option = nullptr,
               *dew_point_option = nullptr;
+  ImageCliOptions image_options;
 };
 
 // The sun from --time and the site (SPA), or as given, or none.
@@ -248,6 +250,7 @@ int run_illuminance(IlluminanceOptions opt) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!mpi::root()) opt.quiet = true;  // under MPI, rank 0 alone speaks (and writes)
   const SkyName sky_name = parse_sky_name(opt.sky);
+  const ImageScale image_scale_asked = image_scale(opt.image_options);
   const int type = sky_name.cie_type;
   const GeometryMode mode = opt.geometry == "float"      ? GeometryMode::floating
                             : opt.geometry == "rational" ? GeometryMode::rational
@@ -395,9 +398,15 @@ int run_illuminance(IlluminanceOptions opt) {
   StagedOutputs outputs;
   if (!opt.out.empty() && opt.out != "-") write_lux_csv(outputs.stage(opt.out), grids);
   if (!opt.image.empty()) {
-    for (const auto& g : grids) {
+    std::vector<const SensorGrid*> shown;
+    for (const auto& g : grids) shown.push_back(g.grid);
+    const std::vector<PlanDrawing> plans = plan_drawings(model.scene, shown);
+    for (std::size_t gi = 0; gi < grids.size(); ++gi) {
+      const auto& g = grids[gi];
       GridReport r;
       r.grid = g.grid;
+      r.plan = &plans[gi];
+      r.scale = image_scale_asked;
       r.shown = g.total;
       r.shown_title = "Illuminance (lux)";
       r.shown_unit = "lux";
@@ -640,7 +649,10 @@ std::function<int()> add_illuminance_command(CLI::App& app) {
       ->check(number_in(0.0, 179.0));
   cmd->add_option("--out", opt->out, "CSV file for per-sensor results (default, or -: standard output; ./- for a file named -)");
   cmd->add_option("--summary", opt->summary, "JSON file for per-grid statistics, the sky, the sun and what was left out");
-  cmd->add_option("--image", opt->image, "PNG plan image per grid (grid name appended when there are several)");
+  CLI::Option* image = cmd->add_option("--image", opt->image,
+                                       "PNG plan image per grid (grid name appended when there are several), the walls "
+                                       "cut at the grid's height and the apertures drawn over the values");
+  add_image_options(*cmd, opt->image_options, image, "lux");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   cmd->add_option("--threads", opt->threads, "Worker threads (default: all cores)")->check(non_negative_number());

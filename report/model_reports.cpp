@@ -84,4 +84,20 @@ nlohmann::json en17037_json(const En17037Assessment& a) {
           {"level_met", a.level_met}};
 }
 
+nlohmann::json breeam_json(const BreeamHea01& b, const std::string& df_is) {
+  const auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"source",
+           "BREEAM UK New Construction 2018 Hea 01 with CIBSE LG10: average daylight factor, minimum point daylight "
+           "factor and uniformity (minimum over average) over the sensors outside the perimeter band (closer than "
+           "perimeter_band_m in plan to a wall, or to anything else cut at the grid's height); BREEAM's criteria per "
+           "building type are read against these; null where every sensor is in the band"},
+          {"df_percent_is", df_is},
+          {"perimeter_band_m", b.band},
+          {"sensors", b.sensors},
+          {"sensors_in_perimeter_band", b.sensors_in_band},
+          {"average_df_percent", value(b.average_df)},
+          {"minimum_df_percent", value(b.minimum_df)},
+          {"uniformity_min_over_average", value(b.uniformity)}};
+}
+
 }  // namespace daylit::cli

@@ -20,5 +20,7 @@ nlohmann::json scene_json(const Scene& scene, const VisibilityEngine& engine);
 nlohmann::json counters_json(const VisibilityCounters& c);
 // The summary block of EN 17037's daylight-factor method (simulation/daylight_criteria.hpp).
 nlohmann::json en17037_json(const En17037Assessment& a);
+// BREEAM Hea 01's figures (simulation/daylight_criteria.hpp); `df_is` says what the DF holds.
+nlohmann::json breeam_json(const BreeamHea01& b, const std::string& df_is);
 
 }  // namespace daylit::cli

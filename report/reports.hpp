@@ -7,12 +7,24 @@
 #include <string>
 #include <vector>
 
+#include "geometry/plan_drawing.hpp"
 #include "geometry/sensor_grid.hpp"
 #include "geometry/visibility.hpp"
 #include "simulation/grid_refinement.hpp"
 #include "simulation/grid_statistics.hpp"
 
 namespace daylit::cli {
+
+// The colour scale of a plan image (df and illuminance: --image-scale, --image-range,
+// --image-contours).
+struct ImageScale {
+  bool logarithmic = false;
+  // The legend's ends; unset: 0 (linear) or a round number near the 5th percentile of the
+  // positive values, at least a thousandth of the top (log), and a round number at or above the
+  // 95th percentile, so that a few bright sensors by a window do not leave the rest in one colour.
+  std::optional<double> low, high;
+  std::vector<double> contours;  // values whose iso-lines are drawn over the map
+};
 
 struct GridReport {
   const SensorGrid* grid = nullptr;
@@ -32,6 +44,10 @@ struct GridReport {
   // `daylit annual`'s temporal map draws records as cells.
   std::string cell_noun = "sensors", footer;
   const std::vector<double>& image_values() const { return shown.empty() ? df_percent : shown; }
+  // What the plan image draws over the values (walls cut at the grid's height, apertures from
+  // above; null: nothing, as on annual's temporal maps) and its colour scale.
+  const PlanDrawing* plan = nullptr;
+  ImageScale scale;
   GridStatistics statistics;
   VisibilityCounters counters;
   double run_time_s = 0;

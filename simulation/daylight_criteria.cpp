@@ -1,5 +1,6 @@
 #include "simulation/daylight_criteria.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/error.hpp"
@@ -39,6 +40,30 @@ En17037Assessment en17037_df_method(const std::vector<double>& df_percent, doubl
     a.levels.push_back(level);
   }
   return a;
+}
+
+BreeamHea01 breeam_hea01(const SensorGrid& grid, const std::vector<double>& df_percent, const PlanDrawing& plan,
+                         double band) {
+  if (df_percent.size() != grid.sensors.size()) throw Error("BREEAM Hea 01: one daylight factor per sensor is needed");
+  BreeamHea01 b;
+  b.band = band;
+  double sum = 0, least = 0;
+  for (std::size_t i = 0; i < grid.sensors.size(); ++i) {
+    const Vec3& p = grid.sensors[i].position;
+    if (plan_distance(plan.walls, p.x, p.y) < band) {
+      ++b.sensors_in_band;
+      continue;
+    }
+    least = b.sensors == 0 ? df_percent[i] : std::min(least, df_percent[i]);
+    sum += df_percent[i];
+    ++b.sensors;
+  }
+  if (b.sensors > 0) {
+    b.average_df = sum / double(b.sensors);
+    b.minimum_df = least;
+    b.uniformity = *b.average_df > 0 ? least / *b.average_df : 0.0;
+  }
+  return b;
 }
 
 }  // namespace daylit

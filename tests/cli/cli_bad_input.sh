@@ -98,6 +98,21 @@ if [ $? -ne 0 ] || [ ! -s out.csv ] || [ ! -s summary.json ] || [ ! -s plan.png 
 fi
 if grep -qi nan out.csv; then echo "FAIL good run printed NaN"; failures=$((failures + 1)); fi
 
+# The plan image's scale: a range whose bottom is not below its top, or a log scale from 0, is
+# refused before any work; the scale options without --image are a command-line error.
+expect_failure "image range upside down" "--image-range 5 1: the bottom must be below the top" --apertures window.rad --grid grid.pts \
+  --out out.csv --image-range 5 1
+expect_failure "log image from 0" "a log scale needs a bottom above 0" --apertures window.rad --grid grid.pts --out out.csv \
+  --image-scale log --image-range 0 10
+"$daylit" df --components sc --apertures window.rad --grid grid.pts --out out.csv --image-contours 1 --quiet 2> stderr.txt
+status=$?
+if [ $status -ne 2 ] || ! grep -q -- "--image-contours requires --image" stderr.txt; then
+  echo "FAIL --image-contours without --image: status $status"; cat stderr.txt; failures=$((failures + 1))
+fi
+"$daylit" df --components sc --apertures window.rad --grid grid.pts --out out.csv --summary summary.json --image log.png \
+  --image-scale log --image-range 0.1 100 --image-contours 1 2 5 --quiet
+if [ $? -ne 0 ] || [ ! -s log.png ]; then echo "FAIL log image with contours"; failures=$((failures + 1)); fi
+
 # Repeated consecutive vertices are dropped with a notice, and change nothing; a sensor on an
 # occluder polygon (a table top, in its plane) sees what it would without it.
 printf 'void polygon window 0 0 21 0 0 1  2 0 1  2 0 1  2 0 2  0 0 2  0 0 2  0 0 1\n' > repeats.rad

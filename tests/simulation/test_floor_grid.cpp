@@ -1,11 +1,14 @@
-// daylit grid's geometry (simulation/floor_grid.hpp) against sensor positions computed by hand, and
-// EN 17037's daylight-factor method (simulation/daylight_criteria.hpp) on values chosen by hand.
+// daylit grid's geometry (simulation/floor_grid.hpp) against sensor positions computed by hand,
+// EN 17037's daylight-factor method and BREEAM Hea 01's figures (simulation/daylight_criteria.hpp)
+// on values chosen by hand, and what a plan image draws (geometry/plan_drawing.hpp).
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/error.hpp"
+#include "geometry/plan_drawing.hpp"
 #include "simulation/daylight_criteria.hpp"
 #include "simulation/floor_grid.hpp"
 
@@ -100,4 +103,88 @@ TEST_CASE("EN 17037's daylight-factor method: targets 100 E / E_med over 50 % an
   df.back() = 0.5;
   CHECK(en17037_df_method(df, 10000).level_met == "none");
   CHECK_THROWS_AS(en17037_df_method(df, 0), Error);
+}
+
+namespace {
+
+Polygon plan_polygon(std::vector<Vec3> vertices) {
+  Polygon p;
+  p.vertices = std::move(vertices);
+  return p;
+}
+
+// A 4 × 3 × 3 m room (x 0..4, y 0..3): floor, ceiling, four walls, the south wall (y = 0) with a
+// notch from the floor up to 1 m at x 1..2 (a door), and a window x 2.5..3.5, z 1..2 in it.
+Scene plan_room() {
+  Scene scene;
+  scene.occluders.push_back(plan_polygon({{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}}));
+  scene.occluders.push_back(plan_polygon({{0, 0, 3}, {0, 3, 3}, {4, 3, 3}, {4, 0, 3}}));
+  scene.occluders.push_back(plan_polygon({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {2, 0, 1}, {2, 0, 0}, {4, 0, 0}, {4, 0, 3}, {0, 0, 3}}));
+  scene.occluders.push_back(plan_polygon({{4, 0, 0}, {4, 3, 0}, {4, 3, 3}, {4, 0, 3}}));
+  scene.occluders.push_back(plan_polygon({{4, 3, 0}, {0, 3, 0}, {0, 3, 3}, {4, 3, 3}}));
+  scene.occluders.push_back(plan_polygon({{0, 3, 0}, {0, 0, 0}, {0, 0, 3}, {0, 3, 3}}));
+  Aperture window;
+  window.polygon = plan_polygon({{2.5, 0, 1}, {3.5, 0, 1}, {3.5, 0, 2}, {2.5, 0, 2}});
+  scene.apertures.push_back(window);
+  return scene;
+}
+
+double length(const PlanSegment& s) { return std::hypot(s.x1 - s.x0, s.y1 - s.y0); }
+
+}  // namespace
+
+TEST_CASE("plan drawing: the walls cut at the grid's height, the door's notch open, the window seen from above") {
+  const Scene scene = plan_room();
+  SECTION("at 0.85 m the south wall is cut in two by the door; floor and ceiling are not cut") {
+    const PlanDrawing d = plan_drawing(scene, 0.85);
+    REQUIRE(d.walls.size() == 5);
+    double south = 0, total = 0;
+    for (const PlanSegment& s : d.walls) {
+      total += length(s);
+      if (s.y0 == 0 && s.y1 == 0) south += length(s);
+    }
+    CHECK(south == Approx(3).epsilon(1e-14));  // 4 m less the 1 m door
+    CHECK(total == Approx(3 + 3 + 4 + 3).epsilon(1e-14));
+    // The window projects to its sill's segment (its jambs project to points, left out).
+    REQUIRE(d.apertures.size() == 2);
+    for (const PlanSegment& s : d.apertures) CHECK(length(s) == Approx(1).epsilon(1e-14));
+  }
+  SECTION("at 1.5 m, above the door, the south wall is whole") {
+    const PlanDrawing d = plan_drawing(scene, 1.5);
+    CHECK(d.walls.size() == 4);
+  }
+  SECTION("a vertex on the plane counts once: the door's head at exactly 1 m") {
+    const PlanDrawing d = plan_drawing(scene, 1.0);
+    double total = 0;
+    for (const PlanSegment& s : d.walls) total += length(s);
+    CHECK(total == Approx(4 + 3 + 4 + 3).epsilon(1e-14));
+  }
+  SECTION("distances in plan") {
+    const PlanDrawing d = plan_drawing(scene, 0.85);
+    CHECK(plan_distance(d.walls, 2, 1.5) == Approx(1.5).epsilon(1e-14));  // to the north and south walls
+    CHECK(plan_distance(d.walls, 1.5, 0.2) == Approx(std::hypot(0.5, 0.2)).epsilon(1e-14));  // in the doorway: to a jamb's end
+    CHECK(std::isinf(plan_distance({}, 0, 0)));
+  }
+}
+
+TEST_CASE("BREEAM Hea 01: the average, minimum and uniformity outside the 0.5 m band, by hand") {
+  const Scene scene = plan_room();
+  const PlanDrawing plan = plan_drawing(scene, 0.85);
+  SensorGrid grid;
+  // (0.25, 1.5) and (3.8, 1.5) lie within 0.5 m of the west and east walls; the other three not.
+  for (const double x : {0.25, 1.0, 2.0, 3.0, 3.8}) grid.sensors.push_back({{x, 1.5, 0.85}, {0, 0, 1}});
+  const std::vector<double> df{9, 4, 2, 3, 0.5};
+  const BreeamHea01 b = breeam_hea01(grid, df, plan);
+  CHECK(b.sensors == 3);
+  CHECK(b.sensors_in_band == 2);
+  CHECK(*b.average_df == Approx(3).epsilon(1e-15));
+  CHECK(*b.minimum_df == 2);
+  CHECK(*b.uniformity == Approx(2.0 / 3).epsilon(1e-15));
+  SECTION("every sensor in the band: no figures, not NaN") {
+    const BreeamHea01 none = breeam_hea01(grid, df, plan, 5.0);
+    CHECK(none.sensors == 0);
+    CHECK_FALSE(none.average_df.has_value());
+    CHECK_FALSE(none.uniformity.has_value());
+  }
+  CHECK_THROWS_AS(breeam_hea01(grid, {1, 2}, plan), Error);
 }
