@@ -25,6 +25,7 @@
 #include "cli/number_checks.hpp"
 #include "cli/reflection_options.hpp"
 #include "geometry/error.hpp"
+#include "geometry/plan_drawing.hpp"
 #include "geometry/sky_box.hpp"
 #include "materials/surface_reflectance.hpp"
 #include "report/annual_reports.hpp"
@@ -231,9 +232,12 @@ int run_annual(AnnualCommandOptions opt) {
     } shown[] = {{"da_300", "Daylight autonomy DA300 (% of occupied hours)", &SensorMetrics::da_300_percent},
                  {"udi_autonomous", "UDI 300-3000 lx (% of occupied hours)", &SensorMetrics::udi_autonomous_percent}};
     for (const auto& g : grids) {
+      // The plans show the walls cut at the grid's height and the apertures, as df's do.
+      const PlanDrawing plan = plan_drawing(model.scene, plan_height(*g.grid));
       for (const auto& s : shown) {
         GridReport r;
         r.grid = g.grid;
+        r.plan = &plan;
         for (const SensorMetrics& m : g.sensors) r.shown.push_back(m.*(s.value));
         r.shown_title = s.title;
         r.shown_unit = "%";
@@ -242,6 +246,7 @@ int run_annual(AnnualCommandOptions opt) {
       }
       GridReport r;
       r.grid = g.grid;
+      r.plan = &plan;
       for (const SensorMetrics& m : g.sensors) r.shown.push_back(m.direct_sun_hours);
       r.shown_title = "Direct sun hours (occupied, >= 1000 lx, blinds open)";
       r.shown_unit = "h";

@@ -291,7 +291,11 @@ void write_image(const std::string& path, const GridReport& report) {
   for (const double level : report.scale.contours)
     if (level >= scale.low && level <= scale.high)
       for (int x = 0; x < bar_w; ++x) canvas.setpixel(bar_x + x, bar_row(level), black, 3);
-  text(canvas, bar_x, bar_y + bar_h + 24, report.shown_title + (scale.logarithmic ? ", log scale" : ""), 14);
+  // Under the bar the quantity's name, without its parenthesis where the whole would run past the
+  // image's edge (the title above the map says it in full).
+  std::string caption = report.shown_title;
+  if (caption.size() > 30 && caption.find(" (") != std::string::npos) caption.resize(caption.find(" ("));
+  text(canvas, bar_x, bar_y + bar_h + 24, caption + (scale.logarithmic ? ", log scale" : ""), 14);
   if (!report.scale.contours.empty()) {
     std::string levels;
     for (const double level : report.scale.contours) levels += (levels.empty() ? "" : ", ") + fmt::format("{:g}", level);
