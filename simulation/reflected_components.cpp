@@ -1608,11 +1608,11 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
   std::size_t n = 0;
   for (std::size_t u = 0; u < nu; ++u)
     if (rho_max > 0 && t.live(mesh.elements[u / 6].surface, int(u / 3 % 2))) index[u] = std::int64_t(n++);
-  if (n > max_nodes) {
-    // Raising the element size helps only down to the mesh of each polygon's own triangles (split
-    // once for the reported mesh): a model of many surfaces (a building of a hundred rooms) may
-    // be over the limit at any size, and the message must say so rather than send the user
-    // raising it in vain.
+  // Raising the element size helps only down to the mesh of each polygon's own triangles (split
+  // once for the reported mesh): a model of many surfaces (a building of a hundred rooms) may be
+  // over the limits at any size, and the messages must say so rather than send the user raising
+  // it in vain.
+  const auto coarsest_nodes = [&] {
     ReflectionOptions coarsest = opt;
     coarsest.element_size = 1e3 * t.scale();
     Transport floor(scene, reflectance, engine, grids, coarsest, 2.0, false);
@@ -1620,12 +1620,17 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     std::size_t fewest = 0;
     for (std::size_t u = 0; u < floor.unknowns(); ++u)
       fewest += floor.live(floor.mesh().elements[u / 6].surface, int(u / 3 % 2));
+    return fewest;
+  };
+  const std::string no_size_helps =
+      " at any --element-size (each surface's own triangles): the model has too many reflecting surfaces for the "
+      "dense operator; use --components sc, or give the rooms (or fewer surfaces) a run each";
+  if (n > max_nodes) {
+    const std::size_t fewest = coarsest_nodes();
     std::string message = "the reflected components' operator would have " + std::to_string(n) + " nodes (at most " +
                           std::to_string(max_nodes) + ")";
     if (fewest > max_nodes)
-      message += ", and " + std::to_string(fewest) +
-                 " at any --element-size (each surface's own triangles): the model has too many reflecting surfaces "
-                 "for the dense operator; use --components sc, or give the rooms (or fewer surfaces) a run each";
+      message += ", and " + std::to_string(fewest) + no_size_helps;
     else
       message += ": raise --element-size (the coarsest mesh has " + std::to_string(fewest) + ")";
     throw Error(message);
@@ -1636,7 +1641,12 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     if (opt.memory_bytes == 0 || bytes <= double(opt.memory_bytes)) return;
     std::string message = "the reflected components' operator of " + std::to_string(n) + " nodes would need about ";
     message += gigabytes(bytes) + " for its dense LU and rows, more than the " + gigabytes(double(opt.memory_bytes));
-    message += " allowed: raise --element-size";
+    const std::size_t fewest = coarsest_nodes();
+    if (8.0 * double(fewest) * double(fewest) > double(opt.memory_bytes))
+      message += " allowed; its LU alone needs " + gigabytes(8.0 * double(fewest) * double(fewest)) + " with " +
+                 std::to_string(fewest) + " nodes" + no_size_helps;
+    else
+      message += " allowed: raise --element-size (the coarsest mesh has " + std::to_string(fewest) + " nodes)";
     throw Error(message);
   };
   const double lu_bytes = 8.0 * double(n) * double(n);

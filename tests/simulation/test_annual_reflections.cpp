@@ -138,6 +138,12 @@ TEST_CASE("reflection operator: one whose dense LU and rows would not fit the me
     CHECK_THROWS_WITH(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o),
                       Catch::Contains("nodes would need about") && Catch::Contains("raise --element-size"));
   }
+  // Below what the coarsest mesh's LU alone needs, no element size helps, and the message says so.
+  const double f = double(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, options(1e6)).nodes.size());
+  o.memory_bytes = std::size_t(4 * f * f);
+  CHECK_THROWS_WITH(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o),
+                    Catch::Contains("its LU alone needs") && Catch::Contains("at any --element-size") &&
+                        !Catch::Contains("raise --element-size"));
   o.memory_bytes = std::size_t(1e10);
   CHECK(reflection_operator(room.scene, room.reflectance, engine, {&room.grid}, o).nodes.size() == fits.nodes.size());
 }
