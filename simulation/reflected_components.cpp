@@ -1494,9 +1494,21 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       message += std::to_string(4 * coarse_mesh.elements.size());
       message += " elements would need about " + gigabytes(needed);
       message += " for its transport rows, more than the " + gigabytes(double(opt.memory_bytes));
-      message += " allowed: raise --element-size (now ";
-      message += std::to_string(opt.element_size);
-      message += ")";
+      // A larger element size helps down to each surface's own triangles, whose rows would need
+      // about as much less as the square of the elements (every element seen from every other).
+      ReflectionOptions coarsest = opt;
+      coarsest.element_size = 1e3 * t.scale();
+      const double fewest = double(Transport(scene, reflectance, engine, grids, coarsest, 2.0, false).mesh().elements.size());
+      const double needed_coarsest = needed * (fewest / elements) * (fewest / elements);
+      if (needed_coarsest > double(opt.memory_bytes)) {
+        message += " allowed, and about " + gigabytes(needed_coarsest);
+        message += " at any --element-size (each surface's own triangles): use --components sc, or give the rooms (or "
+                   "fewer surfaces) a run each";
+      } else {
+        message += " allowed: raise --element-size (now ";
+        message += std::to_string(opt.element_size);
+        message += ")";
+      }
       throw Error(message);
     }
   }

@@ -637,7 +637,9 @@ TEST_CASE("window room: a first mesh whose rows would not fit the memory allowed
     o.memory_bytes = bytes;
     return reflected_components(room.scene, room.reflectance, engine, {&room.grid}, o);
   };
-  CHECK_THROWS_WITH(solve(1000), Catch::Contains("for its transport rows") && Catch::Contains("raise --element-size"));
+  // 1 kB: not even each surface's own triangles would fit, and the message says so.
+  CHECK_THROWS_WITH(solve(1000), Catch::Contains("for its transport rows") && Catch::Contains("at any --element-size") &&
+                                     !Catch::Contains("raise --element-size"));
   // The least budget (to 1 %) the first mesh fits: the next round's rows, more than the first's
   // (as many again and the first's kept beside them), do not.
   double refused = 1000, fits = 1e12;
@@ -656,6 +658,12 @@ TEST_CASE("window room: a first mesh whose rows would not fit the memory allowed
   CHECK_THAT(stopped.stopped, Catch::Contains("refinement stopped after round 0") && Catch::Contains("tolerance is not met"));
   CHECK(stopped.max_error_percent == first.max_error_percent);
   CHECK(stopped.grids[0].irc_percent == first.grids[0].irc_percent);
+  // Elements a third as large (nine times as many, their rows about 81 times as large) need more
+  // than ten times that budget, and there a larger size is the way out.
+  o.element_size = 0.5;
+  CHECK_THROWS_WITH(solve(std::size_t(10 * fits)), Catch::Contains("for its transport rows") &&
+                                                  Catch::Contains("raise --element-size (now 0.5"));
+  o.element_size = 1.5;
   // Without a limit the same run refines twice and says nothing.
   const ReflectionResult unlimited = solve(0);
   CHECK(unlimited.refinements == 2);
