@@ -181,10 +181,11 @@ int run_df(DfOptions opt) {
     write_csv(outputs.stage(opt.out), reports);
   }
   if (!opt.results.empty()) stage_honeybee_results(outputs, opt.results, reports);
+  // Each grid's walls and apertures: drawn on its image, and BREEAM's perimeter band in the summary.
+  std::vector<const SensorGrid*> report_grids;
+  for (const auto& r : reports) report_grids.push_back(r.grid);
+  const std::vector<PlanDrawing> plans = plan_drawings(scene, report_grids);
   if (!opt.image.empty()) {
-    std::vector<const SensorGrid*> shown;
-    for (const auto& r : reports) shown.push_back(r.grid);
-    const std::vector<PlanDrawing> plans = plan_drawings(scene, shown);
     for (std::size_t g = 0; g < reports.size(); ++g) {
       GridReport r = reports[g];
       r.plan = &plans[g];
@@ -219,7 +220,8 @@ int run_df(DfOptions opt) {
         "on every rank: reading the model and building the visibility engine; on rank 0 alone: the reflected components "
         "(one radiosity solution for the whole model; the other ranks wait), --refine's added sensors, the statistics "
         "and every output");
-  for (const auto& r : reports) {
+  for (std::size_t g = 0; g < reports.size(); ++g) {
+    const GridReport& r = reports[g];
     const auto& s = r.statistics;
     nlohmann::json shares;
     for (std::size_t t = 0; t < s.share_at_or_above.size(); ++t)
@@ -251,7 +253,7 @@ int run_df(DfOptions opt) {
     if (opt.median_diffuse_lux > 0)
       summary["grids"].back()["en17037_df_method"] = en17037_json(en17037_df_method(r.df_percent, opt.median_diffuse_lux));
     summary["grids"].back()["breeam_hea_01"] =
-        breeam_json(breeam_hea01(*r.grid, r.df_percent, plan_drawing(scene, plan_height(*r.grid))),
+        breeam_json(breeam_hea01(*r.grid, r.df_percent, plans[g]),
                     reflections ? "sc_percent + erc_percent + irc_percent" : "sc_percent (--components sc)");
     if (r.refinement) {
       const GridRefinement& f = *r.refinement;

@@ -1082,6 +1082,16 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+// What raising --element-size can reach and no further: the first mesh `Transport` builds at an
+// element size larger than the model, each surface's own triangles. A model of many surfaces (a
+// building of a hundred rooms) may be over the memory or node limits even there, and the
+// refusals must say so rather than send the user raising the size in vain.
+Transport coarsest_transport(const Scene& scene, const std::vector<double>& reflectance, const VisibilityEngine& engine,
+                             const std::vector<const SensorGrid*>& grids, ReflectionOptions opt, double model_scale) {
+  opt.element_size = 1e3 * model_scale;
+  return Transport(scene, reflectance, engine, grids, opt, 2.0, false);
+}
+
 // Wall seconds since `start`, restarting it.
 double lap(std::chrono::steady_clock::time_point& start) {
   const auto now = std::chrono::steady_clock::now();
@@ -1496,9 +1506,8 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       message += " for its transport rows, more than the " + gigabytes(double(opt.memory_bytes));
       // A larger element size helps down to each surface's own triangles, whose rows would need
       // about as much less as the square of the elements (every element seen from every other).
-      ReflectionOptions coarsest = opt;
-      coarsest.element_size = 1e3 * t.scale();
-      const double fewest = double(Transport(scene, reflectance, engine, grids, coarsest, 2.0, false).mesh().elements.size());
+      const double fewest =
+          double(coarsest_transport(scene, reflectance, engine, grids, opt, t.scale()).mesh().elements.size());
       const double needed_coarsest = needed * (fewest / elements) * (fewest / elements);
       if (needed_coarsest > double(opt.memory_bytes)) {
         message += " allowed, and about " + gigabytes(needed_coarsest);
@@ -1620,14 +1629,9 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
   std::size_t n = 0;
   for (std::size_t u = 0; u < nu; ++u)
     if (rho_max > 0 && t.live(mesh.elements[u / 6].surface, int(u / 3 % 2))) index[u] = std::int64_t(n++);
-  // Raising the element size helps only down to the mesh of each polygon's own triangles (split
-  // once for the reported mesh): a model of many surfaces (a building of a hundred rooms) may be
-  // over the limits at any size, and the messages must say so rather than send the user raising
-  // it in vain.
+  // The live nodes of the coarsest mesh (coarsest_transport; split once for the reported mesh).
   const auto coarsest_nodes = [&] {
-    ReflectionOptions coarsest = opt;
-    coarsest.element_size = 1e3 * t.scale();
-    Transport floor(scene, reflectance, engine, grids, coarsest, 2.0, false);
+    Transport floor = coarsest_transport(scene, reflectance, engine, grids, opt, t.scale());
     if (!coarse) floor.split_all();
     std::size_t fewest = 0;
     for (std::size_t u = 0; u < floor.unknowns(); ++u)
