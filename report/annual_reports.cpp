@@ -169,12 +169,14 @@ nlohmann::json annual_sky_json(const AnnualSky& sky, const AnnualOptions& option
           {"basis", {{"kind", "Chebyshev T_k(2 u_z - 1) times {1, u_x^2, u_y^2, u_z^2, u_x u_y, u_x u_z, u_y u_z}"},
                      {"degree", options.degree},
                      {"gradation_fit_bound_max", sky.max_fit_error}}},
-          {"circumsolar", {{"method", fmt::format("fixed product rules per sensor (orders {} and {} on each piece: the fan "
-                                                  "triangles split to sides of {} rad) on the pieces more than 5 deg from the "
-                                                  "sky's sun, adaptive cubature split at the sun on those nearer; the whole "
-                                                  "term by adaptive cubature where the far pieces' two orders differ by more "
-                                                  "than the tolerance",
-                                                  kCircumsolarOrderHigh, kCircumsolarOrderLow, kCircumsolarMaxSide)},
+          {"circumsolar", {{"method", fmt::format("fixed product rules per sensor (orders {}, {} and {} on each piece: the "
+                                                  "fan triangles split to sides of {} rad) on the pieces more than 5 deg from "
+                                                  "the sky's sun, adaptive cubature split at the sun on those nearer; order {} "
+                                                  "where it and order {} agree within the tolerance, else order {} where it "
+                                                  "and order {} do, else the whole term by adaptive cubature",
+                                                  kCircumsolarOrderLowest, kCircumsolarOrderLow, kCircumsolarOrderHigh,
+                                                  kCircumsolarMaxSide, kCircumsolarOrderLow, kCircumsolarOrderLowest,
+                                                  kCircumsolarOrderHigh, kCircumsolarOrderLow)},
                            {"tolerance", options.circumsolar_tolerance}}}};
 }
 

@@ -30,6 +30,21 @@ namespace daylit {
 
 namespace {
 
+// Σ_j a_j b_j with four partial sums: one running sum waits on each addition before the next (the
+// smooth sky's dot product was a tenth of an annual run's hourly time), four keep the adder busy.
+double dot_product(const double* a, const double* b, std::size_t n) noexcept {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    s0 += a[j] * b[j];
+    s1 += a[j + 1] * b[j + 1];
+    s2 += a[j + 2] * b[j + 2];
+    s3 += a[j + 3] * b[j + 3];
+  }
+  for (; j < n; ++j) s0 += a[j] * b[j];
+  return (s0 + s1) + (s2 + s3);
+}
+
 constexpr double kMinCosRadiance = 0.01;  // perezlum.cal's floor on cos θ (perez_sky.hpp, clamp 4)
 
 int year_of(const WeatherRecord& r) {
@@ -71,7 +86,8 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
   CircumsolarRule rule;
   rule.regions = coefficients.regions.size();
   static const quadrature::UnitGaussRule high = quadrature::gauss_legendre_unit(kCircumsolarOrderHigh),
-                                         low = quadrature::gauss_legendre_unit(kCircumsolarOrderLow);
+                                         low = quadrature::gauss_legendre_unit(kCircumsolarOrderLow),
+                                         lowest = quadrature::gauss_legendre_unit(kCircumsolarOrderLowest);
   for (std::size_t r = 0; r < coefficients.regions.size(); ++r) {
     const SeenRegion& seen = coefficients.regions[r];
     const SeenTransmittance transmittance(scene, seen);
@@ -94,6 +110,10 @@ CircumsolarRule circumsolar_rule(const Scene& scene, const Sensor& sensor, const
       piece.low_begin = rule.low.size();
       for_each_triangle_node(a, b, c, low, add);
       piece.low_end = rule.low.size();
+      nodes = &rule.lowest;
+      piece.lowest_begin = rule.lowest.size();
+      for_each_triangle_node(a, b, c, lowest, add);
+      piece.lowest_end = rule.lowest.size();
       rule.pieces.push_back(piece);
     });
   }
@@ -209,17 +229,16 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
   const std::size_t size = hour.fit.coefficients.size(), groups = coefficients.lambert.size();
   const PerezSky& sky = *hour.perez;
   const PerezCondition& c = sky.condition();
-  double lambert = 0, lambert_max = 0, abs_coefficients = 0;
+  double lambert = 0, lambert_max = 0;
   for (double l : coefficients.lambert) {
     lambert += l;
     lambert_max = std::max(lambert_max, l);
   }
-  for (double cj : hour.fit.coefficients) abs_coefficients += std::abs(cj);
   double value = 0, error = 0;
   if (!hour.floored) {
-    for (std::size_t g = 0; g < groups; ++g)
-      for (std::size_t j = 0; j < size; ++j) value += hour.fit.coefficients[j] * coefficients.sky_direct[g * size + j];
-    error += hour.fit.bound_over(coefficients.min_uz, coefficients.max_uz) * lambert + coefficients.moment_error * lambert_max * abs_coefficients;
+    for (std::size_t g = 0; g < groups; ++g) value += dot_product(hour.fit.coefficients.data(), coefficients.sky_direct.data() + g * size, size);
+    error += hour.fit.bound_over(coefficients.min_uz, coefficients.max_uz) * lambert +
+             coefficients.moment_error * lambert_max * hour.fit.coefficients_abs_sum;
   }
   const double min_cos = sky.clamps() == PerezClamps::radiance ? kMinCosRadiance : 0.0;
   // An open aperture's constant τ scales a cubature's result; else T along each direction
@@ -251,15 +270,17 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
   // without a rule, the whole term by adaptive cubature split at the sun.
   bool fixed = rule != nullptr && !hour.floored && c.c != 0 && rule->regions == coefficients.regions.size();
   if (fixed) {
-    double high = 0, low = 0, near = 0, near_error = 0;
+    double low = 0, lowest = 0, near = 0, near_error = 0;
     std::vector<SphericalRegion> near_pieces(coefficients.regions.size());
+    std::vector<const CircumsolarRule::Piece*> far;
     for (const CircumsolarRule::Piece& piece : rule->pieces) {
       if (dot(piece.centre, sky.sun()) >= piece.near_cos) {
         near_pieces[piece.region].loops.push_back({piece.a, piece.b, piece.c});
         continue;
       }
-      high += circumsolar_sum(rule->high, piece.high_begin, piece.high_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+      far.push_back(&piece);
       low += circumsolar_sum(rule->low, piece.low_begin, piece.low_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+      lowest += circumsolar_sum(rule->lowest, piece.lowest_begin, piece.lowest_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
     }
     for (std::size_t r = 0; r < near_pieces.size(); ++r) {
       if (near_pieces[r].empty()) continue;
@@ -268,21 +289,41 @@ HourIlluminance hour_illuminance(const Scene& scene, const Sensor& sensor, const
       near_error += q.error_estimate;
       out.adaptive = true;
     }
-    if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high + near)) {
-      value += high + near;
-      error += std::abs(high - low) + near_error;
+    if (std::abs(low - lowest) <= options.circumsolar_tolerance * std::abs(low + near)) {
+      value += low + near;
+      error += std::abs(low - lowest) + near_error;
+      out.far_order = kCircumsolarOrderLow;
     } else {
-      fixed = false;
+      double high = 0;
+      for (const CircumsolarRule::Piece* piece : far)
+        high += circumsolar_sum(rule->high, piece->high_begin, piece->high_end, sky.sun(), c.a, c.b, c.c, c.d, min_cos);
+      if (std::abs(high - low) <= options.circumsolar_tolerance * std::abs(high + near)) {
+        value += high + near;
+        error += std::abs(high - low) + near_error;
+        out.far_order = kCircumsolarOrderHigh;
+      } else {
+        fixed = false;
+      }
     }
   }
-  for (const SeenRegion& seen : coefficients.regions) {
+  // The regions the sun's disk may touch: the rule's pieces tile each region, and a disk more than
+  // kCircumsolarMargin (5°, against its 0.27° radius) from every piece of a region lies outside it,
+  // where cap_lambert's answer is exactly 0 (most regions in most hours).
+  std::vector<char> sun_near;
+  if (rule != nullptr && rule->regions == coefficients.regions.size() && hour.direct_normal_lux > 0) {
+    sun_near.assign(coefficients.regions.size(), 0);
+    for (const CircumsolarRule::Piece& piece : rule->pieces)
+      if (dot(piece.centre, hour.sun) >= piece.near_cos) sun_near[piece.region] = 1;
+  }
+  for (std::size_t r = 0; r < coefficients.regions.size(); ++r) {
+    const SeenRegion& seen = coefficients.regions[r];
     if (!fixed && (hour.floored || c.c != 0)) {
       const QuadratureResult q = cubature(seen, seen.region);
       value += q.value;
       error += q.error_estimate;
       out.adaptive = true;
     }
-    if (hour.direct_normal_lux > 0)
+    if (hour.direct_normal_lux > 0 && (sun_near.empty() || sun_near[r]))
       out.sun_lux += direct_sun_lux(scene, seen, sensor.normal, hour.sun, hour.direct_normal_lux);
   }
   out.sky_lux = hour.scale * value;

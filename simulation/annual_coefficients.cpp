@@ -227,6 +227,7 @@ SmoothSkyFit fit_smooth_sky(double a, double b, double e, double min_cos_theta, 
   for (int k = 0; k <= degree; ++k)
     for (int f = 0; f < kAnnualBasisFamilies; ++f)
       fit.coefficients[std::size_t(annual_basis_index(f, k, degree))] = family[f] * g[std::size_t(k)];
+  for (double cj : fit.coefficients) fit.coefficients_abs_sum += std::abs(cj);
   // The sampled maximum error of p: an even grid, and the clamp's kink where there is one. p by
   // the three-term recurrence T_{k+1} = 2x T_k − T_{k−1}, a block of samples at a time with the
   // loop over samples innermost (their recurrences are independent and run side by side).

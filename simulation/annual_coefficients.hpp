@@ -138,6 +138,7 @@ SensorCoefficients sensor_coefficients(const VisibilityEngine& engine, const Sce
 // [0, 1] evenly spaced and the clamp's kink t_min (a sampled, not a proven, maximum).
 struct SmoothSkyFit {
   std::vector<double> coefficients;
+  double coefficients_abs_sum = 0;  // Σ_j |c_j|: what the moments' error estimate is multiplied by
   double gradation_max_error = 0;  // ε_G over [0, 1]
   double bound_factor = 0;         // ε_G (1 + |e|): times the lambert weight, a bound on the error of lv
   // The same maximum on each of kFitErrorBins equal parts of [0, 1] in u_z, times (1 + |e|): a

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "reference_quadrature.hpp"
@@ -409,6 +410,24 @@ TEST_CASE("the annual daylight coefficients of one Perez hour agree with a 2-D q
     WARN("far sun, fixed rules: |annual / reference - 1| = " << std::abs(far.sky_lux / far_want - 1));
     CHECK_FALSE(far.adaptive);
     CHECK(std::abs(far.sky_lux / far_want - 1) < 1e-6);
+    // The far pieces take order 8 where orders 6 and 8 agree within the tolerance, else order 12
+    // where 8 and 12 do, else the whole term goes to cubature: from a loose tolerance to one
+    // beyond order 12 (6 and 8 agree to about 1e-9 here, 8 and 12 to 1e-10 or 1e-13), each step
+    // is taken, and the bound holds against the reference at each.
+    std::set<int> orders;
+    bool cubature = false;
+    for (double tolerance : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15}) {
+      AnnualOptions tight;
+      tight.circumsolar_tolerance = tolerance;
+      const HourIlluminance h = hour_illuminance(scene, sensor, coefficients,
+                                                 annual_hour(far_sky, far_sun, E_dh, 0, tight), tight, &rule);
+      INFO("tolerance " << tolerance << ", far order " << h.far_order);
+      orders.insert(h.far_order);
+      cubature = cubature || h.adaptive;
+      CHECK(std::abs(h.sky_lux - far_want) <= h.bound_lux + 1e-9 * far_want);
+    }
+    CHECK(orders == std::set<int>{0, kCircumsolarOrderLow, kCircumsolarOrderHigh});
+    CHECK(cubature);
   }
 }
 
