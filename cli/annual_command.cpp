@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/image_options.hpp"
 #include "cli/model_options.hpp"
 #include "cli/mpi_shards.hpp"
 #include "cli/number_checks.hpp"
@@ -48,6 +49,7 @@ namespace {
 struct AnnualCommandOptions {
   ModelFiles files;
   std::string weather, out, summary, hourly, image;
+  ImageCliOptions image_options;  // the percentage plans' (DA300, UDI) scale, range and contours
   std::string geometry = "exact", perez_clamps = "radiance";
   AnnualOptions annual;
   ReflectionCliOptions reflections;
@@ -68,6 +70,7 @@ std::string per_grid(const std::string& path, const std::string& grid, std::size
 }
 
 int run_annual(AnnualCommandOptions opt) {
+  const ImageScale percent_scale = image_scale(opt.image_options);  // refused before any work
   const auto t0 = std::chrono::steady_clock::now();
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
@@ -241,6 +244,7 @@ int run_annual(AnnualCommandOptions opt) {
         for (const SensorMetrics& m : g.sensors) r.shown.push_back(m.*(s.value));
         r.shown_title = s.title;
         r.shown_unit = "%";
+        r.scale = percent_scale;
         r.statistics = grid_statistics(r.shown, {50});
         write_falsecolour_image(outputs.stage(per_grid(opt.image, g.grid->name + "-" + s.key, 2)), r);
       }
@@ -410,7 +414,12 @@ std::function<int()> add_annual_command(CLI::App& app) {
   cmd->add_option("--out", opt->out, "CSV file for per-sensor metrics (default: standard output)");
   cmd->add_option("--summary", opt->summary, "JSON file: per-grid metrics, pass levels, the sky's hours and clamps, bounds");
   cmd->add_option("--hourly", opt->hourly, "NumPy .npy file of hourly illuminance per sensor (float32; grid name appended when several)");
-  cmd->add_option("--image", opt->image, "PNG plans of per-sensor metrics and a temporal map per grid (<stem>-<grid>-{da_300,udi_autonomous,direct_sun_hours,temporal}.png)");
+  CLI::Option* image = cmd->add_option(
+      "--image", opt->image,
+      "PNG plans of per-sensor metrics and a temporal map per grid (<stem>-<grid>-{da_300,udi_autonomous,direct_sun_hours,temporal}.png)");
+  // The percentage plans (DA300, UDI) take df's image options; the direct sun hours (h) and the
+  // temporal map (lux) keep their own automatic scales.
+  add_image_options(*cmd, opt->image_options, image, "% of occupied hours, the DA300 and UDI plans");
   cmd->add_option("--geometry", opt->geometry, "Visibility arithmetic: exact (default), float or rational (as for `daylit df`)")
       ->check(CLI::IsMember({"exact", "float", "rational"}));
   cmd->add_option("--pressure-hpa", opt->annual.pressure_hpa, "Local pressure for refraction (hPa; default 1013.25)")

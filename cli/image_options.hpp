@@ -1,7 +1,8 @@
 #pragma once
-// The plan image's command-line options, shared by `daylit df` and `daylit illuminance`:
-// --image-scale, --image-range and --image-contours; and what every grid's image draws over its
-// values (the walls cut at the grid's height and the apertures: geometry/plan_drawing.hpp).
+// The plan image's command-line options, shared by `daylit df`, `daylit illuminance` and `daylit
+// annual` (its percentage plans): --image-scale, --image-range and --image-contours; and what
+// every grid's image draws over its values (the walls cut at the grid's height and the apertures:
+// geometry/plan_drawing.hpp).
 
 #include <CLI/CLI.hpp>
 

@@ -186,5 +186,20 @@ printf 'not a weather file\n' > "$work/x.txt"
 [ $? -eq 1 ] || fail "unknown extension: exit not 1"
 [ ! -e "$work/bad.csv" ] || fail "unknown extension: partial output"
 
+# The DA300 and UDI plans take df's image options (in % of occupied hours): a settable range and
+# contour lines; a range that is not one is refused before any work, with no output.
+"$daylit" annual "${office[@]}" --weather "$epw" --out "$work/img.csv" --image "$work/img.png" \
+  --image-range 0 100 --image-contours 50 --image-scale linear || fail "annual image options"
+for m in da_300 udi_autonomous direct_sun_hours temporal; do
+  [ -s "$work/img-grid-$m.png" ] || fail "annual image options: no $m plan"
+done
+"$daylit" annual "${office[@]}" --weather "$epw" --out "$work/logbad.csv" --image "$work/logbad.png" \
+  --image-scale log --image-range 0 100 2> "$work/err"
+[ $? -eq 1 ] || fail "log image from 0: exit not 1"
+grep -q "a log scale needs a bottom above 0" "$work/err" || fail "log image from 0: $(cat "$work/err")"
+! ls "$work"/logbad* 2>/dev/null | grep -q . || fail "log image from 0: partial output"
+"$daylit" annual "${office[@]}" --weather "$epw" --out "$work/bad.csv" --image-contours 50 2> "$work/err"
+[ $? -eq 2 ] || fail "--image-contours without --image: exit not 2"
+
 [ "$failures" -eq 0 ] && echo "all annual CLI checks passed"
 exit "$failures"
