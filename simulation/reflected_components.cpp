@@ -429,8 +429,20 @@ class Transport {
       // (a partition, another, then the façade), added likewise by the triple's own view.
       thread_local std::vector<std::array<std::size_t, 3>> triples;
       series_triples(pairs, triples);
+      // Sets of four or more such groups, each two a pair (series_cliques), by their own views.
+      thread_local std::vector<std::vector<std::size_t>> cliques;
+      series_cliques(pairs, triples, cliques);
       thread_local std::vector<std::vector<std::array<double, 3>>> raw[N];  // [m][g][i]: E(through g) per element
       thread_local std::vector<std::vector<std::array<double, 3>>> raw_pair[N];  // [m][p][i]: E(through pair p)
+      thread_local std::vector<std::vector<std::array<double, 3>>> raw_triple[N];  // [m][t][i]: E(past triple t)
+      thread_local std::vector<std::vector<std::array<double, 3>>> raw_clique[N];  // [m][q][i]: E(past clique q)
+      if (!cliques.empty())
+        for (std::size_t m = 0; m < N; ++m) {
+          raw_triple[m].resize(triples.size());
+          for (auto& r : raw_triple[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
+          raw_clique[m].resize(cliques.size());
+          for (auto& r : raw_clique[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
+        }
       if (!pairs.empty())
         for (std::size_t m = 0; m < N; ++m) {
           raw[m].resize(groups_.size());
@@ -441,7 +453,7 @@ class Transport {
           raw_pair[m].resize(pairs.size());
           for (auto& r : raw_pair[m]) r.assign(meshes[m]->surfaces[s].elements.size(), {0.0, 0.0, 0.0});
         }
-      // What a view past the panes of several groups (pair_view, triple_view) shows of the
+      // What a view past the panes of several groups (pair_view, group_set_view) shows of the
       // surface; `free`: nothing in it was clipped.
       const auto seen_past = [&](const PairView& view, bool& free) {
         VisibilityOptions past = opt;
@@ -532,13 +544,17 @@ class Transport {
         });
       }
       // Through panes of three groups: E(g, h, k) − the three pairs' + the three groups' − E(none)
-      // (inclusion and exclusion: what passes all three and no other), under T_g·T_h·T_k. Four
-      // or more groups on one line are not counted (README, "Known limits").
-      for (const auto& triple : triples) {
+      // (inclusion and exclusion: what passes all three and no other), under T_g·T_h·T_k.
+      for (std::size_t tr = 0; tr < triples.size(); ++tr) {
+        const std::array<std::size_t, 3>& triple = triples[tr];
         bool all3_free = false;
-        const SphericalRegion all3 = seen_past(triple_view(triple), all3_free);
+        const SphericalRegion all3 = seen_past(group_set_view({triple.begin(), triple.end()}), all3_free);
         if (all3.empty()) continue;
-        if (all3_free && inside_free && !inside.empty()) continue;  // the eight regions are one
+        if (all3_free && inside_free && !inside.empty()) {  // the eight regions are one
+          if (!cliques.empty())
+            for (std::size_t m = 0; m < N; ++m) raw_triple[m][tr] = inside_cs[m];
+          continue;
+        }
         const auto pair_at = [&](std::size_t a, std::size_t b) {
           return std::size_t(std::find(pairs.begin(), pairs.end(), std::pair{a, b}) - pairs.begin());
         };
@@ -551,6 +567,7 @@ class Transport {
         };
         for_each_seen(all3, all3_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
                                            std::array<double, 3> c) {
+          if (!cliques.empty()) raw_triple[m][tr][i] = c;
           const auto [t, spread] = element_transmittance(el, x, product);
           const std::array<double, 3>& c_in = inside_cs[m][i];
           for (int k = 0; k < 3; ++k)
@@ -559,6 +576,89 @@ class Transport {
           sink(m, e, side, c, true, spread);
         });
       }
+      // Through panes of four or more groups S: Σ over the subsets T of S of (−1)^{|S|−|T|} E(T)
+      // (inclusion and exclusion, as above: what passes every group of S and no other), under
+      // the product of their T; E(T) by the size of T: inside, raw, raw_pair, raw_triple,
+      // raw_clique (the cliques come by size, so every smaller one is found first).
+      for (std::size_t q = 0; q < cliques.size(); ++q) {
+        const std::vector<std::size_t>& set = cliques[q];
+        bool all_free = false;
+        const SphericalRegion all = seen_past(group_set_view(set), all_free);
+        if (all.empty()) continue;
+        if (all_free && inside_free && !inside.empty()) {  // every subset's region is the same
+          for (std::size_t m = 0; m < N; ++m) raw_clique[m][q] = inside_cs[m];
+          continue;
+        }
+        // Each proper subset's sign and coefficients, per mesh.
+        thread_local std::vector<std::pair<double, const std::vector<std::array<double, 3>>*>> terms[N];
+        const std::size_t full = (std::size_t(1) << set.size()) - 1;
+        for (std::size_t m = 0; m < N; ++m) {
+          terms[m].clear();
+          for (std::size_t mask = 0; mask < full; ++mask) {
+            std::vector<std::size_t> subset;
+            for (std::size_t b = 0; b < set.size(); ++b)
+              if (mask & (std::size_t(1) << b)) subset.push_back(set[b]);
+            const double sign = (set.size() - subset.size()) % 2 == 0 ? 1.0 : -1.0;
+            const std::vector<std::array<double, 3>>* e = nullptr;
+            if (subset.empty()) {
+              e = &inside_cs[m];
+            } else if (subset.size() == 1) {
+              e = &raw[m][subset[0]];
+            } else if (subset.size() == 2) {
+              e = &raw_pair[m][std::size_t(std::find(pairs.begin(), pairs.end(), std::pair{subset[0], subset[1]}) - pairs.begin())];
+            } else if (subset.size() == 3) {
+              const std::array<std::size_t, 3> key{subset[0], subset[1], subset[2]};
+              e = &raw_triple[m][std::size_t(std::find(triples.begin(), triples.end(), key) - triples.begin())];
+            } else {
+              e = &raw_clique[m][std::size_t(std::find(cliques.begin(), cliques.end(), subset) - cliques.begin())];
+            }
+            terms[m].emplace_back(sign, e);
+          }
+        }
+        const auto product = [&](const Vec3& u) {
+          double t = 1;
+          for (const std::size_t g : set) t *= groups_[g].at(dot(u, groups_[g].pane_normal));
+          return t;
+        };
+        for_each_seen(all, all_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
+                                         std::array<double, 3> c) {
+          raw_clique[m][q][i] = c;
+          const auto [t, spread] = element_transmittance(el, x, product);
+          for (const auto& [sign, coefficients] : terms[m])
+            for (int k = 0; k < 3; ++k) c[k] += sign * (*coefficients)[i][k];
+          for (int k = 0; k < 3; ++k) c[k] *= t;
+          sink(m, e, side, c, true, spread);
+        });
+      }
+    }
+  }
+
+  // The sets of four or more groups each two of which are in `pairs` (series_pairs, sorted), by
+  // size and then in order: each extends one of the size below (from the triples) by a later
+  // group in series with all of its members. A line crosses panes of all of them only then.
+  static void series_cliques(const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                             const std::vector<std::array<std::size_t, 3>>& triples,
+                             std::vector<std::vector<std::size_t>>& out) {
+    out.clear();
+    if (triples.size() < 4) return;  // four groups in series make four triples
+    const auto has = [&](std::size_t a, std::size_t b) {
+      return std::find(pairs.begin(), pairs.end(), std::pair{a, b}) != pairs.end();
+    };
+    std::vector<std::vector<std::size_t>> level;
+    for (const auto& t : triples) level.push_back({t.begin(), t.end()});
+    while (!level.empty()) {
+      std::vector<std::vector<std::size_t>> next;
+      for (const std::vector<std::size_t>& set : level)
+        for (const auto& [g, k] : pairs) {
+          if (g != set.back()) continue;  // k > every member, in series with the last...
+          bool all = true;                // ...and with every other
+          for (std::size_t i = 0; i + 1 < set.size() && all; ++i) all = has(set[i], k);
+          if (!all) continue;
+          next.push_back(set);
+          next.back().push_back(k);
+        }
+      out.insert(out.end(), next.begin(), next.end());
+      level = std::move(next);
     }
   }
 
@@ -794,18 +894,17 @@ class Transport {
     std::call_once(view.built, [&] { view.engine = std::make_unique<VisibilityEngine>(view_engine({g, h}, view.index)); });
     return view;
   }
-  // The same past the panes of three groups (series_triples), kept by the triple.
-  const PairView& triple_view(const std::array<std::size_t, 3>& groups) const {
+  // The same past the panes of three or more groups (series_triples, series_cliques), kept by
+  // the set (ascending).
+  const PairView& group_set_view(const std::vector<std::size_t>& groups) const {
     PairView* view = nullptr;
     {
-      const std::lock_guard lock(triple_views_mutex_);
-      std::unique_ptr<PairView>& slot = triple_views_[groups];
+      const std::lock_guard lock(group_set_views_mutex_);
+      std::unique_ptr<PairView>& slot = group_set_views_[groups];
       if (!slot) slot = std::make_unique<PairView>();
       view = slot.get();
     }
-    std::call_once(view->built, [&] {
-      view->engine = std::make_unique<VisibilityEngine>(view_engine({groups.begin(), groups.end()}, view->index));
-    });
+    std::call_once(view->built, [&] { view->engine = std::make_unique<VisibilityEngine>(view_engine(groups, view->index)); });
     return *view;
   }
 
@@ -834,8 +933,8 @@ class Transport {
   std::vector<VisibilityEngine> through_;  // per aperture group
   std::vector<std::vector<std::size_t>> through_index_;  // per group and aperture: its occluder index there
   mutable std::vector<PairView> pair_views_;              // per pair of groups g < h: at h(h − 1)/2 + g
-  mutable std::map<std::array<std::size_t, 3>, std::unique_ptr<PairView>> triple_views_;  // built on first use
-  mutable std::mutex triple_views_mutex_;
+  mutable std::map<std::vector<std::size_t>, std::unique_ptr<PairView>> group_set_views_;  // built on first use
+  mutable std::mutex group_set_views_mutex_;
   std::vector<Vec3> pane_normals_, pane_points_;          // per aperture: its plane
   std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;

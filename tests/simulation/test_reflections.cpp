@@ -833,6 +833,8 @@ struct SeriesPanes {
   Aperture window{test::polygon({{0.5, 0, 0.6}, {0.5, 0, 1.6}, {1.5, 0, 1.6}, {1.5, 0, 0.6}}, "window"), 0.8};
   Aperture partition{test::polygon({{0, 1, 0}, {0, 1, 2}, {2, 1, 2}, {2, 1, 0}}, "partition"), 0.5};
   Aperture second{test::polygon({{0, 1.25, 0}, {0, 1.25, 2}, {2, 1.25, 2}, {2, 1.25, 0}}, "second partition"), 0.25};
+  Aperture third{test::polygon({{0, 1.4, 0}, {0, 1.4, 2}, {2, 1.4, 2}, {2, 1.4, 0}}, "third partition"), 0.6};
+  Aperture fourth{test::polygon({{0, 0.5, 0}, {0, 0.5, 2}, {2, 0.5, 2}, {2, 0.5, 0}}, "fourth partition"), 0.9};
   SensorGrid grid;
   SeriesPanes() {
     scene.occluders = cube_room(false);
@@ -884,6 +886,29 @@ TEST_CASE("panes of three kinds in series (two partitions and the window): what 
       CHECK(window_alone.erc_percent[i] > 0.1);
       CHECK(behind_both.erc_percent[i] == Approx(0.125 * window_alone.erc_percent[i]).epsilon(1e-9));
       CHECK(behind_both.irc_percent[i] == 0);
+    }
+  }
+}
+
+TEST_CASE("panes of four and five kinds in series: what lies beyond them all passes with every transmittance") {
+  // Three partitions and the window (then four and the window), every line from the sensors to
+  // the wall crossing one pane of each: the ERC must be exactly 0.5 × 0.25 × 0.6 (× 0.9) of the
+  // window's alone (1e-9, as above). Before sets of four or more groups had views of their own
+  // (inclusion and exclusion over every subset) the wall seen through them all was lost (ERC 0).
+  const SeriesPanes c;
+  const SensorReflections window_alone = c.solve({c.window});
+  const std::vector<std::pair<std::vector<Aperture>, double>> cases{
+      {{c.third, c.second, c.partition, c.window}, 0.5 * 0.25 * 0.6},
+      {{c.window, c.partition, c.third, c.second}, 0.5 * 0.25 * 0.6},
+      {{c.fourth, c.second, c.window, c.third, c.partition}, 0.5 * 0.25 * 0.6 * 0.9}};
+  for (const auto& [apertures, share] : cases) {
+    const SensorReflections behind_all = c.solve(apertures);
+    for (std::size_t i = 0; i < c.grid.sensors.size(); ++i) {
+      INFO(apertures.size() << " kinds, sensor " << i << ": ERC " << behind_all.erc_percent[i] << " against " << share
+                            << " of " << window_alone.erc_percent[i]);
+      CHECK(window_alone.erc_percent[i] > 0.1);
+      CHECK(behind_all.erc_percent[i] == Approx(share * window_alone.erc_percent[i]).epsilon(1e-9));
+      CHECK(behind_all.irc_percent[i] == 0);
     }
   }
 }
