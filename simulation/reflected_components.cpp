@@ -532,8 +532,8 @@ class Transport {
             for (std::size_t m = 0; m < N; ++m) raw_pair[m][p] = inside_cs[m];
           continue;
         }
-        const ApertureGroup &gg = groups_[g], &gh = groups_[h];
-        const auto product = [&](const Vec3& u) { return gg.at(dot(u, gg.pane_normal)) * gh.at(dot(u, gh.pane_normal)); };
+        const std::array<std::size_t, 2> both_groups{g, h};
+        const auto product = [&](const Vec3& u) { return transmittance_product(both_groups, u); };
         for_each_seen(both, both_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
                                            std::array<double, 3> c) {
           if (!triples.empty()) raw_pair[m][p][i] = c;
@@ -560,11 +560,7 @@ class Transport {
         };
         const std::size_t g = triple[0], h = triple[1], k3 = triple[2];
         const std::size_t gh = pair_at(g, h), gk = pair_at(g, k3), hk = pair_at(h, k3);
-        const auto product = [&](const Vec3& u) {
-          double t = 1;
-          for (const std::size_t q : triple) t *= groups_[q].at(dot(u, groups_[q].pane_normal));
-          return t;
-        };
+        const auto product = [&](const Vec3& u) { return transmittance_product(triple, u); };
         for_each_seen(all3, all3_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
                                            std::array<double, 3> c) {
           if (!cliques.empty()) raw_triple[m][tr][i] = c;
@@ -615,11 +611,7 @@ class Transport {
             terms[m].emplace_back(sign, e);
           }
         }
-        const auto product = [&](const Vec3& u) {
-          double t = 1;
-          for (const std::size_t g : set) t *= groups_[g].at(dot(u, groups_[g].pane_normal));
-          return t;
-        };
+        const auto product = [&](const Vec3& u) { return transmittance_product(set, u); };
         for_each_seen(all, all_free, [&](std::size_t m, std::size_t i, std::size_t e, const RadiosityElement& el,
                                          std::array<double, 3> c) {
           raw_clique[m][q][i] = c;
@@ -631,6 +623,14 @@ class Transport {
         });
       }
     }
+  }
+
+  // The product of the groups' transmittances along u, each at the cosine about its own pane.
+  template <class Groups>
+  double transmittance_product(const Groups& groups, const Vec3& u) const {
+    double t = 1;
+    for (const std::size_t g : groups) t *= groups_[g].at(dot(u, groups_[g].pane_normal));
+    return t;
   }
 
   // The sets of four or more groups each two of which are in `pairs` (series_pairs, sorted), by
