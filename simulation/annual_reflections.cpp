@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "illumination/fan_product_rule.hpp"
+#include "simulation/block_product.hpp"
 #include "illumination/gauss_legendre.hpp"
 #include "simulation/direction_angles.hpp"
 #include "simulation/pane_transmittance.hpp"
@@ -135,9 +136,10 @@ std::vector<NodeColumns> node_columns(const Scene& scene, const ReflectionOperat
   return out;
 }
 
-// D = W Q for one grid, one row-major matrix per channel; the sensors' own far ground through
-// each aperture added to its group's ground column.
-std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t grid_index,
+// D = W Q for one grid, one matrix per channel in whole blocks of rows (RowBlocks: the grid's
+// sensors at their places, zeros elsewhere, for block_product); the sensors' own far ground
+// through each aperture added to its group's ground column.
+std::vector<Eigen::MatrixXd> sensor_columns(const ReflectionOperator& op, std::size_t grid_index,
                                       const std::vector<NodeColumns>& q, const std::vector<int>& group_of_aperture,
                                       std::size_t groups, const Columns& columns, const std::vector<ChannelColumns>& kept,
                                       std::size_t apertures) {
@@ -146,8 +148,9 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
   const std::vector<double>& direct_ground = op.sensor_ground_direct[grid_index];
   const std::size_t nodes = op.nodes.size(), sensors = direct_ground.size();
   const std::size_t width = columns.size();
-  std::vector<RowMatrix> d;
-  for (std::size_t c = 0; c <= groups; ++c) d.push_back(RowMatrix::Zero(Eigen::Index(sensors), Eigen::Index(kept[c].size())));
+  const RowBlocks blocks(Eigen::Index(sensors), op.response_first[grid_index]);
+  std::vector<Eigen::MatrixXd> d;
+  for (std::size_t c = 0; c <= groups; ++c) d.push_back(Eigen::MatrixXd::Zero(blocks.height, Eigen::Index(kept[c].size())));
   // Q's entries as (channel, column) once: the loop below visits each sensors-times over.
   struct Entry {
     std::uint32_t channel, column;
@@ -180,18 +183,17 @@ std::vector<RowMatrix> sensor_columns(const ReflectionOperator& op, std::size_t 
       }
     }
     for (std::size_t c = 0; c <= groups; ++c)
-      for (std::size_t j = 0; j < count; ++j) {
-        double* row = d[c].row(Eigen::Index(first + j)).data();
-        for (std::size_t col = 0; col < kept[c].size(); ++col) row[col] = acc[(c * width + col) * kSensorBlock + j];
-      }
+      for (std::size_t col = 0; col < kept[c].size(); ++col)
+        for (std::size_t j = 0; j < count; ++j)
+          d[c](blocks.offset + Eigen::Index(first + j), Eigen::Index(col)) = acc[(c * width + col) * kSensorBlock + j];
     std::fill(acc.begin(), acc.end(), 0.0);
     for (std::size_t j = 0; j < count; ++j) {
+      const Eigen::Index row = blocks.offset + Eigen::Index(first + j);
       for (std::size_t a = 0; a < apertures; ++a)
-        d[std::size_t(group_of_aperture[a])](
-            Eigen::Index(first + j), Eigen::Index(kept[std::size_t(group_of_aperture[a])].ground_at())) +=
+        d[std::size_t(group_of_aperture[a])](row, Eigen::Index(kept[std::size_t(group_of_aperture[a])].ground_at())) +=
             ground[(first + j) * apertures + a];
       // The far ground seen directly: light from outdoors, its own channel's.
-      d[groups](Eigen::Index(first + j), Eigen::Index(kept[groups].ground_at())) += direct_ground[first + j];
+      d[groups](row, Eigen::Index(kept[groups].ground_at())) += direct_ground[first + j];
     }
   });
   return d;
@@ -295,7 +297,6 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
                                const std::vector<std::size_t>& grid_indices, const std::vector<int>& group_of_aperture,
                                std::size_t groups, const std::vector<HourLight>& sky_hours, double ground_reflectance) {
   const auto t0 = std::chrono::steady_clock::now();
-  Eigen::setNbThreads(tbb::this_task_arena::max_concurrency());  // Eigen's products: the run's threads
   const DirectionGrid fine;
   DirectionGrid coarse;
   coarse.rows = fine.rows / 2;
@@ -313,7 +314,7 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
   struct Mesh {
     const ReflectionOperator* op;
     std::vector<ChannelColumns> kept;       // per channel
-    std::vector<std::vector<RowMatrix>> d;  // per grid of the batch, per channel: its kept columns
+    std::vector<std::vector<Eigen::MatrixXd>> d;  // per grid of the batch, per channel: its kept columns
   };
   std::vector<Mesh> meshes;
   for (const ReflectionOperator* op : {&fine_op, coarse_op}) {
@@ -329,7 +330,7 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
   ReflectedGrids result;
   for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
     ReflectedHours out;
-    out.sensors = std::size_t(meshes.front().d[gi].front().rows());
+    out.sensors = fine_op.sensor_ground_direct[grid_indices[gi]].size();
     out.hours = sky_hours.size();
     out.channels = groups + 1;
     out.lux.assign(out.sensors * out.hours * out.channels, 0.0f);
@@ -395,20 +396,29 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
           if (!sun[g].row(k).isZero(0)) lit_nodes[g].push_back(k);
       for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
         ReflectedHours& out = result.grids[gi];
-        Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(Eigen::Index(out.sensors), hours), total_coarse;
+        // The products' rows: the grid's sensors at their places in whole blocks (block_product).
+        const RowBlocks blocks(Eigen::Index(out.sensors), m.op->response_first[grid_indices[gi]]);
+        Eigen::MatrixXd total_fine = Eigen::MatrixXd::Zero(blocks.height, hours), total_coarse;
         if (both_grids) total_coarse = total_fine;
         for (std::size_t g = 0; g <= groups; ++g) {
-          const RowMatrix& d = m.d[gi][g];
+          const Eigen::MatrixXd& d = m.d[gi][g];
           const ChannelColumns& k = m.kept[g];
           const Eigen::Index kf = Eigen::Index(k.fine.size()), kc = Eigen::Index(k.coarse.size());
           const Eigen::Index ground_at = Eigen::Index(k.ground_at());
-          Eigen::MatrixXd r_fine = d.leftCols(kf) * sky_fine_kept[g] + d.col(ground_at) * ground, r_coarse;
-          if (both_grids) r_coarse = d.middleCols(kf, kc) * sky_coarse_kept[g] + d.col(ground_at) * ground;
+          Eigen::MatrixXd r_fine = block_product(d.leftCols(kf), sky_fine_kept[g]), r_coarse;
+          r_fine += d.col(ground_at) * ground;
+          if (both_grids) {
+            r_coarse = block_product(d.middleCols(kf, kc), sky_coarse_kept[g]);
+            r_coarse += d.col(ground_at) * ground;
+          }
           // The sun's part: W times the sun's first bounce on the nodes it reaches.
           if (!lit_nodes[g].empty()) {
             const Eigen::Map<const RowMatrix> w(m.op->response[grid_indices[gi]].data(), Eigen::Index(out.sensors),
                                                 Eigen::Index(n));
-            const Eigen::MatrixXd rs = w(Eigen::all, lit_nodes[g]) * sun[g](lit_nodes[g], Eigen::all);
+            Eigen::MatrixXd w_lit = Eigen::MatrixXd::Zero(blocks.height, Eigen::Index(lit_nodes[g].size()));
+            w_lit.middleRows(blocks.offset, Eigen::Index(out.sensors)) = w(Eigen::all, lit_nodes[g]);
+            const Eigen::MatrixXd sun_lit = sun[g](lit_nodes[g], Eigen::all);
+            const Eigen::MatrixXd rs = block_product(w_lit, sun_lit);
             r_fine += rs;
             if (both_grids) r_coarse += rs;
           }
@@ -417,7 +427,8 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
           if (mi == 0)
             for (std::size_t s = 0; s < out.sensors; ++s)
               for (std::size_t b = 0; b < count; ++b)
-                out.lux[(s * out.hours + lit[start + b]) * out.channels + g] = float(r_fine(Eigen::Index(s), Eigen::Index(b)));
+                out.lux[(s * out.hours + lit[start + b]) * out.channels + g] =
+                    float(r_fine(blocks.offset + Eigen::Index(s), Eigen::Index(b)));
         }
         totals_fine[mi].push_back(std::move(total_fine));
         totals_coarse[mi].push_back(std::move(total_coarse));
@@ -425,9 +436,10 @@ ReflectedGrids reflected_light(const Scene& scene, const ReflectionOperator& fin
     }
     for (std::size_t gi = 0; gi < grid_indices.size(); ++gi) {
       ReflectedHours& out = result.grids[gi];
+      const Eigen::Index offset = RowBlocks(Eigen::Index(out.sensors), fine_op.response_first[grid_indices[gi]]).offset;
       for (std::size_t s = 0; s < out.sensors; ++s)
         for (std::size_t b = 0; b < count; ++b) {
-          const Eigen::Index i = Eigen::Index(s), c = Eigen::Index(b);
+          const Eigen::Index i = offset + Eigen::Index(s), c = Eigen::Index(b);
           double e = std::abs(totals_fine[0][gi](i, c) - totals_coarse[0][gi](i, c));
           if (meshes.size() > 1) e += std::abs(totals_fine[0][gi](i, c) - totals_fine[1][gi](i, c));
           out.estimate[s * out.hours + lit[start + b]] = float(e);

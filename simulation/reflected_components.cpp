@@ -1867,6 +1867,7 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     op.sensor_ground.push_back(std::move(ground));
     op.sensor_ground_direct.push_back(std::move(ground_direct));
     op.sensor_outdoors.push_back(std::move(outdoors));
+    op.response_first.push_back(grid->first);
   }
   op.stages.push_back({"sensors' views and transport", sensor_time});
   op.stages.push_back({"solves for the sensors' rows of W", solve_time});

@@ -229,6 +229,9 @@ struct ReflectionOperator {
   // as df's (Transport::direct): such a sensor is outdoors, and takes light from outdoors as it
   // comes, through no window and no blinds.
   std::vector<std::vector<char>> sensor_outdoors;
+  // Per grid: the index of its first row in the whole grid (SensorGrid::first: an MPI rank's
+  // block starts there), which products whose rows must not depend on the block key on.
+  std::vector<std::size_t> response_first;
   // Per live element side, whose nodes are nodes[3i], nodes[3i + 1] and nodes[3i + 2] (normal:
   // theirs): its triangle and the polygon it lies on (Scene::occluders, then the apertures' panes),
   // over which the sun's first bounce is integrated (sunlit_elements.hpp); and the model's size.
