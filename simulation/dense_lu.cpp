@@ -29,7 +29,7 @@ int lapack_size(Eigen::Index n) {
 
 }  // namespace
 
-DenseLU::DenseLU(Eigen::MatrixXd a, int threads) : lu_(std::move(a)), solve_threads_(threads >= 2 ? 2 : 1) {
+DenseLU::DenseLU(Eigen::MatrixXd a, int threads) : lu_(std::move(a)) {
   if (lu_.rows() != lu_.cols()) throw Error("dense LU: the matrix is not square");
   const int n = lapack_size(lu_.rows());
   pivots_.assign(std::size_t(n), 0);
@@ -50,19 +50,19 @@ Eigen::MatrixXd DenseLU::solve(Eigen::MatrixXd b, std::size_t first_column) cons
   // place in a call of the same width. That is what makes its digits its own: OpenBLAS's kernels
   // treat the places of a block differently (on an AVX-512 processor the last 8 of 128 columns
   // are summed in another order than the first 120; on Haswell, not), and dgetrs on all the
-  // columns at once would also split them between threads by their number. Each call splits its
-  // block's columns between OpenBLAS's threads, two of them (one where the factorisation had
-  // one): a fixed number, so that a column's place in its thread's share, and its digits, are
-  // the same on any machine with two cores or more (measured on the office sample's 10,380
-  // nodes, 300 sensors: 2.02 → 1.22 s, the hourly results byte for byte the same). Not the
-  // blocks spread over threads: OpenBLAS's OpenMP build does not promise that concurrent calls
-  // from other threads are safe.
+  // columns at once would also split them between threads by their number. One thread: two
+  // split each block's columns between them (64 and 64), which on this machine's kernel gives
+  // the same digits and 1.65 times the speed (the office sample's 10,380 nodes, 300 sensors:
+  // 2.02 → 1.22 s, 2026-12-07), but on a kernel that treats the last places of a block otherwise
+  // (AVX-512's) would make a column's digits depend on the threads (--threads 1 against more,
+  // an MPI rank's against one process's). Not the blocks spread over threads either: OpenBLAS's
+  // OpenMP build does not promise that concurrent calls from other threads are safe.
   for (Eigen::Index i = 0; i < lu_.rows(); ++i) {
     const Eigen::Index p = pivots_[std::size_t(i)] - 1;  // LAPACK's pivots count from 1
     if (p != i) b.row(i).swap(b.row(p));
   }
   const int n = lapack_size(lu_.rows()), width = int(kColumns);
-  openblas_set_num_threads(solve_threads_);
+  openblas_set_num_threads(1);
   Eigen::MatrixXd x(lu_.rows(), kColumns);
   // `place`: the place in its block of B's column `first`.
   Eigen::Index first = 0, place = Eigen::Index(first_column % std::size_t(kColumns));

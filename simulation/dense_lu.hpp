@@ -1,7 +1,7 @@
 #pragma once
 // A dense LU factorisation with partial pivoting by LAPACK's dgetrf as OpenBLAS implements it
 // (blocked, recursive panels, threaded), and solves with it (OpenBLAS's dtrsm on blocks of a fixed
-// number of columns, on two threads). The reflected
+// number of columns, one thread). The reflected
 // components' operator (reflection_operator, annual runs) factorises (I − ρK)ᵀ of every live node
 // (10,308 on the office sample) and solves it for every sensor: the largest dense work of a run.
 // Eigen's PartialPivLU, used before, took 3× as long for the factorisation on 2 threads
@@ -34,7 +34,6 @@ class DenseLU {
  private:
   Eigen::MatrixXd lu_;
   std::vector<int> pivots_;
-  int solve_threads_ = 1;  // OpenBLAS's threads in each block's solve (solve): 2, or 1 with one
 };
 
 }  // namespace daylit

@@ -89,9 +89,8 @@ TEST_CASE("a column of the dense LU's solution depends on its index only, not on
 
 TEST_CASE("the dense LU's solution does not depend on the number of threads") {
   // A run's results do not depend on --threads: OpenBLAS splits the factorisation's products
-  // between threads by blocks of the result, each entry summed in one order; the solves (two
-  // threads where the factorisation had two or more, else one) likewise, at every place of a
-  // 128-column block (300 columns).
+  // between threads by blocks of the result, each entry summed in one order; the solves run on
+  // one thread whatever the factorisation had (300 columns: every place of a 128-column block).
   const int n = 1500;
   const Eigen::MatrixXd a = reflection_matrix(n, 0.9, 0.98, 3);
   const Eigen::MatrixXd b = random_columns(n, 300, 5);
