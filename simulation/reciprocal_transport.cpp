@@ -154,7 +154,8 @@ CoarseSpace coarse_space(const std::vector<double>& diagonal, const std::vector<
 
 }  // namespace
 
-ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::vector<double>& weight) {
+ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::vector<double>& weight,
+                                  std::vector<std::vector<double>>* collocated) {
   const std::size_t n = rows.size();
   ReciprocityReport report;
   const auto live = [&](std::size_t u) { return weight[u] > 0; };
@@ -291,17 +292,25 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
     for (std::size_t u = 0; u < n; ++u) p[u] = z[u] + beta * p[u];
   }
 
-  // K' = G'/w in place, and what the change did (G_ju = 2 S_uj − G_uj, to rounding).
+  // K' = G'/w in place, and what the change did (G_ju = 2 S_uj − G_uj, to rounding). With
+  // `collocated`, s[u] takes K's values as it goes (S_uj is read once, just before).
   std::vector<double> entry_change(n, 0.0), closure(n, 0.0);
+  const bool keep = collocated != nullptr;
   for_rows(n, [&](std::size_t u) {
-    if (!live(u)) return;
+    if (keep && !live(u)) s[u].resize(rows[u].size());
+    if (!live(u)) {
+      for (std::size_t i = 0; keep && i < rows[u].size(); ++i) s[u][i] = rows[u][i].second;
+      return;
+    }
     double total = 0, f = 0;
     for (std::size_t i = 0; i < rows[u].size(); ++i) {
       auto& [j, k] = rows[u][i];
       const double g = weight[u] * k;
+      const double s_uj = s[u][i];
+      if (keep) s[u][i] = k;
       if (live(j)) {
-        const double g_new = s[u][i] - std::abs(s[u][i]) * (lambda[u] + lambda[j]);
-        entry_change[u] = std::max(entry_change[u], std::abs(g_new - g) / std::max(std::abs(g), std::abs(2 * s[u][i] - g)));
+        const double g_new = s_uj - std::abs(s_uj) * (lambda[u] + lambda[j]);
+        entry_change[u] = std::max(entry_change[u], std::abs(g_new - g) / std::max(std::abs(g), std::abs(2 * s_uj - g)));
         k = g_new / weight[u];
         total += g_new;
       } else {
@@ -317,6 +326,7 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
     if (live(u)) report.max_row_change = std::max(report.max_row_change, row_sum[u]);
   }
   report.residual = worst(closure);
+  if (keep) *collocated = std::move(s);
   return report;
 }
 

@@ -72,6 +72,10 @@ struct ReciprocityReport {
 // and entries towards them count as escaping. Rows' entries are sorted by column and duplicate
 // columns merged. Cost: O(entries · log(row length)) for the sort, O(entries) for the pairing (a
 // sweep, in parallel), then O(entries) per iteration (about 20–60 on rooms).
-ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::vector<double>& weight);
+// `collocated`, where given, receives K as it was, row by row in the order of the entries of
+// `rows` as returned (sorted and merged, partners added with 0): a refinement that reuses rows
+// needs the collocated values, and this is 8 bytes an entry where a copy of K is 16.
+ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::vector<double>& weight,
+                                  std::vector<std::vector<double>>* collocated = nullptr);
 
 }  // namespace daylit

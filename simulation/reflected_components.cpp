@@ -959,22 +959,28 @@ struct ReceiverRow {
   bool direct_empty = true;
 };
 
+// `scratch`: where the row is gathered (a thread's, reused), so that the row kept is allocated
+// once at its size: grown in place, the rows of a mesh (K, hundreds of MB) took twice their
+// memory and as much again in page faults.
 ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::size_t own_surface,
-                         VisibilityCounters& counters) {
+                         VisibilityCounters& counters, TransportRow& scratch) {
   ReceiverRow r;
   const std::size_t own = t.mesh().surfaces[own_surface].occluder;
   const auto a = t.through_apertures(x, n, own, true, counters);
   const auto d = t.direct(x, n, own, counters);
   r.first_bounce = a.sky + a.ground + d.total;
   r.direct_empty = d.empty;
+  scratch.clear();
   t.transport(t.mesh(), x, n, own_surface, counters,
-              [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) { add_coefficients(r.row, e, side, c); });
+              [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) { add_coefficients(scratch, e, side, c); });
+  r.row.assign(scratch.begin(), scratch.end());
   return r;
 }
 
 struct Local {
   VisibilityCounters counters;
   std::size_t direct_empty = 0, direct = 0;
+  TransportRow scratch;
 };
 
 // A stage's progress, from options.on_progress (nothing where it is unset).
@@ -998,8 +1004,17 @@ RadiosityMesh listing_only(const RadiosityMesh& mesh, Keep&& listed) {
 // element not split (a coefficient of K depends on the node and the source element alone); only
 // the entries of the new elements (the split ones' children) are found, over the surfaces that
 // have them.
+// A mesh's rows as the next refinement's node_rows reads them: each row's columns, and its values
+// as collocated (before reciprocity), from `collocated` where that is not empty (then the rows hold
+// K', the reciprocal values, in the same order), else from the rows themselves.
+struct KeptRows {
+  std::vector<ReceiverRow> rows;
+  std::vector<std::vector<double>> collocated;
+  double value(std::size_t u, std::size_t i) const { return collocated.empty() ? rows[u].row[i].second : collocated[u][i]; }
+};
+
 struct EarlierRows {
-  std::vector<ReceiverRow> rows;      // the earlier mesh's, as collocated (before reciprocity)
+  KeptRows kept;                      // the earlier mesh's
   std::vector<std::size_t> parent;    // per element of the current mesh: the earlier one (refine_mesh)
   std::vector<bool> split;            // per earlier element
   std::vector<bool> refined_surface;  // per surface: some of its elements split
@@ -1037,21 +1052,27 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
     for (int k = 0; k < 3; ++k) {
       ReceiverRow r;
       if (kept) {
-        const ReceiverRow& before = earlier->rows[unknown(earlier->parent[e], side, k)];
+        const std::size_t u_before = unknown(earlier->parent[e], side, k);
+        const ReceiverRow& before = earlier->kept.rows[u_before];
         r.first_bounce = before.first_bounce;
         r.direct_empty = before.direct_empty;
-        for (const auto& [j, c] : before.row) {
+        TransportRow& row = local.scratch;
+        row.clear();
+        for (std::size_t i = 0; i < before.row.size(); ++i) {
+          const std::uint32_t j = before.row[i].first;
           const std::size_t source = earlier->current[j / 6];
-          if (source != std::size_t(-1)) r.row.emplace_back(std::uint32_t(unknown(source, int(j / 3 % 2), int(j % 3))), c);
+          if (source != std::size_t(-1))
+            row.emplace_back(std::uint32_t(unknown(source, int(j / 3 % 2), int(j % 3))), earlier->kept.value(u_before, i));
         }
         t.transport(
             earlier->fresh, el.nodes[k], n, el.surface, local.counters,
             [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
-              add_coefficients(r.row, src, src_side, c);
+              add_coefficients(row, src, src_side, c);
             },
             &earlier->refined_surface);
+        r.row.assign(row.begin(), row.end());
       } else {
-        r = receiver_row(t, el.nodes[k], n, el.surface, local.counters);
+        r = receiver_row(t, el.nodes[k], n, el.surface, local.counters, local.scratch);
         r.first_bounce += sun[std::size_t(k)];
       }
       local.direct_empty += r.direct_empty;
@@ -1200,10 +1221,9 @@ double lap(std::chrono::steady_clock::time_point& start) {
 }
 
 // `name`: the mesh's, for the stages' times ("coarse mesh", "round 0"). `earlier`: node_rows'.
-// `keep`, where given: the rows as collocated, for the next refinement's node_rows.
+// `keep`, where given: the rows, for the next refinement's node_rows.
 MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress,
-                        const std::string& name, const EarlierRows* earlier = nullptr,
-                        std::vector<ReceiverRow>* keep = nullptr) {
+                        const std::string& name, const EarlierRows* earlier = nullptr, KeptRows* keep = nullptr) {
   auto clock = std::chrono::steady_clock::now();
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
@@ -1211,19 +1231,20 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
   result.stages.push_back({name + ": rows (first bounce and transport at every node)", lap(clock)});
   std::vector<double> rho(nu), source(nu), weight(nu, 0.0);
   std::vector<TransportRow> k_rows(nu);
-  // In parallel: the copy kept for the next round is as large as K (14 million entries on the office).
   tbb::parallel_for(std::size_t(0), nu, [&](std::size_t u) {
     const RadiosityElement& el = mesh.elements[u / 6];
     const double r = mesh.surfaces[el.surface].reflectance;
     rho[u] = r;
     source[u] = r * rows[u].first_bounce;
-    k_rows[u] = keep != nullptr ? rows[u].row : std::move(rows[u].row);
+    k_rows[u] = std::move(rows[u].row);
     if (t.live(el.surface, int(u / 3 % 2))) weight[u] = el.area / 3;
   });
   MeshSolution out;
   for (const TransportRow& row : k_rows) out.entries += row.size();
+  // Kept for the next round, the collocated values beside K' rather than a copy of K (14 million
+  // entries on the office: the copy's page faults cost more than the copying).
   if (reciprocal) {
-    out.reciprocity = make_reciprocal(k_rows, weight);
+    out.reciprocity = make_reciprocal(k_rows, weight, keep != nullptr ? &keep->collocated : nullptr);
     result.stages.push_back({name + ": reciprocity", lap(clock)});
   }
   RadiositySolution sol = solve_radiosity(k_rows, rho, source);
@@ -1253,7 +1274,10 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     out.flux_absorbed += w * (1 - rho[u]) * (rows[u].first_bounce + received[u]);
     out.flux_escaping += w * m[u] * (1 - view[u]);
   }
-  if (keep != nullptr) *keep = std::move(rows);
+  if (keep != nullptr) {
+    for (std::size_t u = 0; u < nu; ++u) rows[u].row = std::move(k_rows[u]);
+    keep->rows = std::move(rows);
+  }
   return out;
 }
 
@@ -1639,7 +1663,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     name += " rows";
     const std::string round_name = "round " + std::to_string(round);
     const bool more = round < opt.max_refinements;
-    std::vector<ReceiverRow> kept_rows;
+    KeptRows kept_rows;
     MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name, earlier.get(),
                                    more ? &kept_rows : nullptr);
     clock = std::chrono::steady_clock::now();
@@ -1696,7 +1720,7 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
       }
     }
     earlier = std::make_unique<EarlierRows>();
-    earlier->rows = std::move(kept_rows);
+    earlier->kept = std::move(kept_rows);
     coarse = std::move(fine);
     coarse_mesh = t.mesh();
     split = next;
