@@ -1798,9 +1798,10 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
     }
   op.scale = t.scale();
   std::vector<TransportRow> rows(nu);
-  const auto row_locals = for_each_sensor<VisibilityCounters>(
+  const auto row_locals = for_each_sensor<Local>(
       2 * mesh.elements.size(), 8, stage_progress(opt, "reflections: the mesh's rows", "element sides", 2 * mesh.elements.size()),
-      [&](std::size_t i, VisibilityCounters& counters) {
+      [&](std::size_t i, Local& local) {
+        VisibilityCounters& counters = local.counters;
         const std::size_t e = i / 2;
         const int side = int(i % 2);
         const RadiosityElement& el = mesh.elements[e];
@@ -1813,13 +1814,15 @@ ReflectionOperator reflection_operator(const Scene& scene, const std::vector<dou
           node.position = el.nodes[k];
           node.normal = normal;
           node.views = t.views(el.nodes[k], normal, own, true, counters);
+          local.scratch.clear();  // as in receiver_row
           t.transport(mesh, el.nodes[k], normal, el.surface, counters,
                       [&](std::size_t src, int src_side, const std::array<double, 3>& c, bool, double) {
-                        add_coefficients(rows[u], src, src_side, c);
+                        add_coefficients(local.scratch, src, src_side, c);
                       });
+          rows[u].assign(local.scratch.begin(), local.scratch.end());
         }
       });
-  for (const auto& l : row_locals) op.counters += l;
+  for (const auto& l : row_locals) op.counters += l.counters;
   op.stages.push_back({"rows (every node's views and transport)", lap(clock)});
   if (opt.reciprocal_transport) {
     std::vector<double> weight(nu, 0.0);
