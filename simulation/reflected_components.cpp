@@ -1223,11 +1223,14 @@ double lap(std::chrono::steady_clock::time_point& start) {
 // `name`: the mesh's, for the stages' times ("coarse mesh", "round 0"). `earlier`: node_rows'.
 // `keep`, where given: the rows, for the next refinement's node_rows.
 MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress,
-                        const std::string& name, const EarlierRows* earlier = nullptr, KeptRows* keep = nullptr) {
+                        const std::string& name, EarlierRows* earlier = nullptr, KeptRows* keep = nullptr) {
   auto clock = std::chrono::steady_clock::now();
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
   std::vector<ReceiverRow> rows = node_rows(t, result, progress, earlier);
+  // The earlier rows are read: what they held serves the reciprocity's arrays below, which would
+  // otherwise be page-faulted in afresh.
+  if (earlier != nullptr) earlier->kept = {};
   result.stages.push_back({name + ": rows (first bounce and transport at every node)", lap(clock)});
   std::vector<double> rho(nu), source(nu), weight(nu, 0.0);
   std::vector<TransportRow> k_rows(nu);
