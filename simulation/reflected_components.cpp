@@ -1158,7 +1158,7 @@ double median_room_span(const std::vector<Polygon>& surfaces, const SensorGrid& 
 double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept) {
   if (!(elements > 0)) return 0;
   const double growth = next_elements / elements;
-  return kRowBytesPerEntry * entries * (2 * growth * growth + (earlier_kept ? 1 : 0));
+  return entries * (kRowBytesPerEntry * growth * growth + (earlier_kept ? kKeptBytesPerEntry : 0));
 }
 
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids) {

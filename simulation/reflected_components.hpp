@@ -165,12 +165,13 @@ struct ReflectionResult {
 // extent: a fifth of the box around the apertures and the sensors.
 double automatic_element_size(const Scene& scene, const std::vector<const SensorGrid*>& grids);
 
-// The peak bytes of a round's rows of K (found, copied for the solver, the round before's kept
-// beside them): 2 × kRowBytesPerEntry per entry of its rows (an entry is 16 bytes, a vector grown
-// by push_back holds up to half again as many) plus the earlier rows. `entries`: the earlier
-// mesh's count over `elements` elements; the new mesh has `next_elements`, each row seeing that
-// many times more elements, and that many times more rows.
-inline constexpr double kRowBytesPerEntry = 24;
+// The peak bytes of a round's rows of K: kRowBytesPerEntry per entry of its rows (16 for the
+// entry, each row allocated at its size; 12 for the reciprocity's symmetric values and columns)
+// plus kKeptBytesPerEntry per entry of the round before's, kept beside the new rows while they
+// are found (K' and K's collocated values). `entries`: the earlier mesh's count over `elements`
+// elements; the new mesh has `next_elements`, each row seeing that many times more elements, and
+// that many times more rows.
+inline constexpr double kRowBytesPerEntry = 28, kKeptBytesPerEntry = 24;
 double rows_bytes_estimate(double entries, double elements, double next_elements, bool earlier_kept);
 
 // The discrete system of a scene at its first mesh (elements of the asked size, both sides of
