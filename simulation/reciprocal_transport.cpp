@@ -297,9 +297,11 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
   std::vector<double> entry_change(n, 0.0), closure(n, 0.0);
   const bool keep = collocated != nullptr;
   for_rows(n, [&](std::size_t u) {
-    if (keep && !live(u)) s[u].resize(rows[u].size());
     if (!live(u)) {
-      for (std::size_t i = 0; keep && i < rows[u].size(); ++i) s[u][i] = rows[u][i].second;
+      if (keep) {
+        s[u].resize(rows[u].size());
+        for (std::size_t i = 0; i < rows[u].size(); ++i) s[u][i] = rows[u][i].second;
+      }
       return;
     }
     double total = 0, f = 0;

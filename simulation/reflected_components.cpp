@@ -999,11 +999,6 @@ RadiosityMesh listing_only(const RadiosityMesh& mesh, Keep&& listed) {
   return out;
 }
 
-// What a mesh's rows can take from those of the mesh it was refined from (Transport::refine): an
-// element not split keeps its nodes, so its first bounce, and its row's entries for every source
-// element not split (a coefficient of K depends on the node and the source element alone); only
-// the entries of the new elements (the split ones' children) are found, over the surfaces that
-// have them.
 // A mesh's rows as the next refinement's node_rows reads them: each row's columns, and its values
 // as collocated (before reciprocity), from `collocated` where that is not empty (then the rows hold
 // K', the reciprocal values, in the same order), else from the rows themselves.
@@ -1013,6 +1008,11 @@ struct KeptRows {
   double value(std::size_t u, std::size_t i) const { return collocated.empty() ? rows[u].row[i].second : collocated[u][i]; }
 };
 
+// What a mesh's rows can take from those of the mesh it was refined from (Transport::refine): an
+// element not split keeps its nodes, so its first bounce, and its row's entries for every source
+// element not split (a coefficient of K depends on the node and the source element alone); only
+// the entries of the new elements (the split ones' children) are found, over the surfaces that
+// have them.
 struct EarlierRows {
   KeptRows kept;                      // the earlier mesh's
   std::vector<std::size_t> parent;    // per element of the current mesh: the earlier one (refine_mesh)
