@@ -15,8 +15,8 @@
 #include <optional>
 
 #include "illumination/fan_product_rule.hpp"
-#include "simulation/block_product.hpp"
 #include "illumination/gauss_legendre.hpp"
+#include "simulation/block_product.hpp"
 #include "simulation/direction_angles.hpp"
 #include "simulation/pane_transmittance.hpp"
 #include "simulation/sunlit_elements.hpp"

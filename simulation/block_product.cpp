@@ -1,23 +1,13 @@
 #include "simulation/block_product.hpp"
 
 #include "geometry/error.hpp"
-
-// BLAS's Fortran interface (reference BLAS's dgemm.f); OpenBLAS exports it.
-extern "C" {
-void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
-            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
-            const int* ldc, std::size_t transa_length, std::size_t transb_length);
-void openblas_set_num_threads(int threads);
-}
+#include "simulation/openblas.hpp"
 
 namespace daylit {
 
 namespace {
 
-int blas_size(Eigen::Index n) {
-  if (n > Eigen::Index(1) << 30) throw Error("block product: " + std::to_string(n) + " is beyond BLAS's int");
-  return int(n);
-}
+int blas_size(Eigen::Index n) { return blas_int(n, "block product: size"); }
 
 }  // namespace
 

@@ -4,16 +4,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
-
-// LAPACK's and BLAS's Fortran interfaces (reference LAPACK's dgetrf.f, BLAS's dtrsm.f); OpenBLAS
-// exports them.
-extern "C" {
-void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
-void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
-            const double* alpha, const double* a, const int* lda, double* b, const int* ldb, std::size_t side_length,
-            std::size_t uplo_length, std::size_t transa_length, std::size_t diag_length);
-void openblas_set_num_threads(int threads);
-}
+#include "simulation/openblas.hpp"
 
 namespace daylit {
 
@@ -22,10 +13,7 @@ namespace {
 // The width of every triangular solve (see DenseLU::solve).
 constexpr Eigen::Index kColumns = 128;
 
-int lapack_size(Eigen::Index n) {
-  if (n > Eigen::Index(1) << 30) throw Error("dense LU: " + std::to_string(n) + " unknowns is beyond LAPACK's int");
-  return int(n);
-}
+int lapack_size(Eigen::Index n) { return blas_int(n, "dense LU: unknowns"); }
 
 }  // namespace
 
