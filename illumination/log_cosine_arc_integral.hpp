@@ -9,21 +9,33 @@
 // cancellation sent 8 % of the node–element pairs of the room sample to long double (25 % of the
 // run). The integrand itself has one sign, so a quadrature of it does not cancel at all.
 //
-// The integrand in one piece: with q = 1 − c² cos² s = κ² + c² sin² s (κ = |w·m| = √(1 − c²),
-// both given to full relative precision), it is φ(q) = log(1 − q)/(2q), φ(0) = −½. q is a sum of
-// two non-negative terms, so the node values are good to a few ulp; log(1 − q) is taken as
-// log1p(−q) for q ≤ ½ and as 2 log(c cos s) beyond (where 1 − q would lose digits). φ ≤ −½.
+// The integrand in t = tan s, which needs no trigonometric function at the nodes (sines and
+// cosines of the nodes were most of the cost in s): with cos² s = 1/(1 + t²), ds = dt/(1 + t²)
+// and κ² = 1 − c² (κ = |w·m|),
+//     ∫ log(c cos s)/(1 − c² cos² s) ds = ∫_{t0}^{t1} f(t) dt,   f(t) = −log1p(Q/c²)/(2Q),
+// Q = κ² + t² (log c − ½ log(1 + t²) = −½ log((1 + t²)/c²) and (1 + t²)/c² = 1 + Q/c²). Q is a
+// sum of two non-negative terms, so the node values are good to a few ulp; f(0) = −1/(2c²) at
+// Q = 0, where f is analytic (log1p(x)/x is).
 //
-// The rule: φ(q(s)) is analytic except where cos s = 0 (q = 1; log's branch cut runs along
-// Re s = ±π/2), so on an arc of half-length h whose nearer end is D from ±π/2 it is analytic in the
-// Bernstein ellipse with ρ = t + √(t² − 1), t = 1 + D/h, and the n-point rule's error falls like
-// ρ^{−2n} (Trefethen, Approximation Theory and Approximation Practice, thm. 19.3). n is the least
-// with ρ^{2n} ≥ 2^{10}/u (a thousandfold margin for the constant of the theorem and the size of φ
-// on the ellipse against its size on the arc, checked against the brackets in __float128 in
-// tests/illumination/test_log_cosine_arc_integral.cpp); arcs that would need more than
-// kMaxNodes, or that come within 1/16 rad of the horizon (where an ulp of s is a large part of the
-// distance to the singularity), return nothing and the caller takes the brackets.
+// The rule: f is analytic except where Q/c² = −1, i.e. t² = −1: branch points at t = ±i, cuts
+// along the imaginary axis beyond them. On [t0, t1] of half-length H whose nearest point to ±i is
+// D away (D² = 1 + the distance of the interval from 0, squared), f is analytic in the Bernstein
+// ellipse with ρ = a + √(a² − 1), a = 1 + D/H (that ellipse lies within D of the interval), and
+// the n-point rule's error falls like ρ^{−2n} (Trefethen, Approximation Theory and Approximation
+// Practice, thm. 19.3). n is the least with ρ^{2n} ≥ 2^{14}/u (a margin for the constant of
+// the theorem and the size of f on the ellipse against its size on the interval, checked against
+// the brackets in __float128 in tests/illumination/test_log_cosine_arc_integral.cpp: the worst
+// error there is 11 ulp; with 2^{10}, 40–50 ulp on the longest arcs the rule serves, whose
+// ellipse passes close to the logarithmic branch points);
+// arcs that would need more than kMaxNodes, or that come within 1/16 rad of the horizon (|t| ≥
+// cot(1/16): there an ulp of an endpoint's cosine is a large part of it), return nothing and the
+// caller takes the brackets.
+//
+// H is taken as sin θ/(2 cos s0 cos s1) (= (t1 − t0)/2 without its cancellation), with the sine
+// of the arc's length θ as arc_edge gives it, to full relative precision: a short arc's integral is
+// as accurate as its length, not as the difference of its endpoints' tangents.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -39,18 +51,18 @@ namespace log_cosine_detail {
 constexpr int kMaxNodes = 16;
 constexpr double kHorizonMargin = 1.0 / 16;
 
-// The rules of 1…kMaxNodes points on [−1, 1] in R, and the least t = 1 + D/h each one serves.
+// The rules of 1…kMaxNodes points on [−1, 1] in R, and the least a = 1 + D/H each one serves.
 template <class R>
 struct Rules {
   std::array<std::array<R, kMaxNodes>, kMaxNodes + 1> x{}, w{};
-  std::array<R, kMaxNodes + 1> min_t{};
+  std::array<R, kMaxNodes + 1> min_a{};
   Rules() {
-    const long double target = 1024.0L / (long double)real::unit_roundoff<R>();
+    const long double target = 16384.0L / (long double)real::unit_roundoff<R>();
     for (int n = 1; n <= kMaxNodes; ++n) {
       const quadrature::GaussLegendreRule rule = quadrature::gauss_legendre(n);
       for (int i = 0; i < n; ++i) x[n][i] = R(rule.x[std::size_t(i)]), w[n][i] = R(rule.w[std::size_t(i)]);
       const long double rho = std::pow(target, 1.0L / (2 * n));
-      min_t[n] = R((rho + 1 / rho) / 2);
+      min_a[n] = R((rho + 1 / rho) / 2);
     }
   }
 };
@@ -64,38 +76,34 @@ std::optional<Tracked<R>> log_cosine_arc_integral(const WFrameArc<R>& e) {
   using namespace log_cosine_detail;
   static_assert(std::is_same_v<R, double> || std::is_same_v<R, long double>);
   static const Rules<R> rules;
-  const R half_pi = real::pi<R>() / 2;
-  const R s0 = real::atan2(e.sin0, e.cos0);  // cos s0 > 0 on the arc: s0 ∈ (−π/2, π/2)
-  const R h = e.arc.length / 2, mid = s0 + h;
-  const R distance = half_pi - (real::abs(mid) + h);  // from the nearer end to ±π/2
-  if (!(distance >= R(kHorizonMargin)) || !(h > 0)) return std::nullopt;
-  const R t = 1 + distance / h;
+  static const R max_tangent = R(1) / std::tan(R(kHorizonMargin));
+  // cos s > 0 on the arc, s1 = s0 + θ.
+  const R t0 = e.sin0 / e.cos0, t1 = e.sin1 / e.cos1;
+  const R reach = std::max(real::abs(t0), real::abs(t1));
+  if (!(reach < max_tangent)) return std::nullopt;
+  const R h = e.arc.sin_length / (2 * e.cos0 * e.cos1), mid = (t0 + t1) / 2;
+  if (!(h > 0)) return std::nullopt;
+  const R nearest = t0 > 0 ? t0 : (t1 < 0 ? -t1 : R(0));
+  const R a = 1 + real::sqrt(1 + nearest * nearest) / h;
   int n = 1;
-  while (n <= kMaxNodes && t < rules.min_t[n]) ++n;
+  while (n <= kMaxNodes && a < rules.min_a[n]) ++n;
   if (n > kMaxNodes) return std::nullopt;
-  const R c = e.c, kappa = e.kappa(), kappa2 = kappa * kappa;
-  // φ at the node of angle s from sin s and cos s.
-  auto phi = [&](R sin_s, R cos_s) {
-    const R q = kappa2 + c * c * sin_s * sin_s;
-    if (q == 0) return R(-0.5);
-    return q <= R(0.5) ? real::log1p(-q) / (2 * q) : real::log(c * cos_s) / q;
+  const R c2 = e.c * e.c, kappa = e.kappa(), kappa2 = kappa * kappa;
+  auto f = [&](R t) {
+    const R q = kappa2 + t * t;
+    return q == 0 ? R(-0.5) / c2 : -real::log1p(q / c2) / (2 * q);
   };
-  // The nodes come in pairs mid ± δ (the rule is symmetric): their sines and cosines by the
-  // angle-addition formulas from mid's and δ's, one sincos per pair. Their absolute error of a few
-  // ulp moves q by as much, which φ (Lipschitz where q ≤ ½) and log(c cos s) (cos s ≥ sin D there)
-  // take as a few ulp relative, within the 1/D below.
-  const R sin_mid = real::sin(mid), cos_mid = real::cos(mid);
-  R sum = n % 2 ? rules.w[n][n / 2] * phi(sin_mid, cos_mid) : R(0);
+  R sum = n % 2 ? rules.w[n][n / 2] * f(mid) : R(0);
   for (int i = 0; i < n / 2; ++i) {
-    const R delta = h * rules.x[n][i], sin_d = real::sin(delta), cos_d = real::cos(delta);
-    const R a = sin_mid * cos_d, b = cos_mid * sin_d, ca = cos_mid * cos_d, cb = sin_mid * sin_d;
-    sum += rules.w[n][i] * (phi(a + b, ca - cb) + phi(a - b, ca + cb));
+    const R delta = h * rules.x[n][i];
+    sum += rules.w[n][i] * (f(mid + delta) + f(mid - delta));
   }
   const R value = h * sum;
-  // Every term has φ's sign, so the sum's rounding is a few ulp of itself; the node values carry
-  // a few ulp of their own and the nodes' positions an ulp of s, which moves φ by at most
-  // u·|s|/D relative (φ's logarithmic growth towards the horizon): hence 2 + 1/D.
-  return Tracked<R>{value, real::abs(value) * (2 + 1 / distance)};
+  // Every term has f's sign, so the sum's rounding is a few ulp of itself. The nodes' values carry
+  // a few ulp of their own, and their positions an ulp of t, which moves f by at most 2 ulp
+  // relative (|t f′/f| ≤ 2: log1p(x)/x has logarithmic derivative between −1/x and 0); h carries
+  // an ulp of each cosine, relative 1/cos = √(1 + t²) ≤ 1 + |t| ulp: hence 3 + reach.
+  return Tracked<R>{value, real::abs(value) * (3 + reach)};
 }
 
 }  // namespace daylit::rational

@@ -174,13 +174,44 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
     row.resize(k);
   });
 
+  // S = (G + Gᵀ)/2 on live pairs (0 towards sides left out), what escapes X, and d, row u from
+  // the positions of its entries' partners (j, u) in the rows j.
+  // The columns again, apart from K's values: conjugate gradients read only them and S, 12 bytes
+  // an entry instead of 24 (it is bound by memory traffic).
+  std::vector<std::vector<double>> s(n);
+  std::vector<std::vector<std::uint32_t>> column(n);
+  std::vector<double> escape(n, 0.0), diagonal(n, 0.0), d(n, 0.0), row_sum(n, 0.0);
+  const auto fill = [&](std::size_t u, const std::vector<std::uint32_t>& partner) {
+    s[u].assign(rows[u].size(), 0.0);
+    column[u].resize(rows[u].size());
+    for (std::size_t i = 0; i < rows[u].size(); ++i) column[u][i] = rows[u][i].first;
+    double received = 0, degree = 0, defect = 0, f = 0;
+    for (std::size_t i = 0; i < rows[u].size(); ++i) {
+      const auto [j, k] = rows[u][i];
+      const double g = weight[u] * k;
+      received += g;
+      f += k;
+      if (partner[i] == kNone) continue;
+      s[u][i] = (g + weight[j] * rows[j][partner[i]].second) / 2;  // the same from both sides
+      degree += std::abs(s[u][i]);
+      defect += s[u][i] - g;
+    }
+    row_sum[u] = f;
+    escape[u] = weight[u] - received;
+    diagonal[u] = degree + std::abs(escape[u]);
+    d[u] = defect;
+  };
+
   // The partner (j, u) of every collocated (u, j) between live unknowns, added with K = 0 where
   // node j sees nothing of u's element while node u sees part of j's (one-sided visibility).
-  // missing[j] lists such u in increasing u: the chunks' finds, in the chunks' order.
+  // missing[j] lists such u in increasing u: the chunks' finds, in the chunks' order. Where none
+  // is missing (every pair seen from both ends, as in most rooms) the same sweep fills S; else
+  // the rows grow by the missing partners and a second sweep fills it.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(partner_chunks(n));
   sweep_partners(rows, live, [&](std::size_t chunk, std::size_t u, const std::vector<std::uint32_t>& partner) {
     for (std::size_t i = 0; i < partner.size(); ++i)
       if (partner[i] == kNone && live(rows[u][i].first)) found[chunk].emplace_back(rows[u][i].first, std::uint32_t(u));
+    fill(u, partner);
   });
   std::vector<std::vector<std::uint32_t>> missing(n);
   for (const auto& list : found)
@@ -201,34 +232,9 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
   });
   for (std::size_t j = 0; j < n; ++j) report.entries_added += missing[j].size();
   missing = {};
-
-  // S = (G + Gᵀ)/2 on live pairs (0 towards sides left out), what escapes X, and d.
-  // The columns again, apart from K's values: conjugate gradients read only them and S, 12 bytes
-  // an entry instead of 24 (it is bound by memory traffic).
-  std::vector<std::vector<double>> s(n);
-  std::vector<std::vector<std::uint32_t>> column(n);
-  std::vector<double> escape(n, 0.0), diagonal(n, 0.0), d(n, 0.0), row_sum(n, 0.0);
   // Every live (u, j) now has its (j, u).
-  sweep_partners(rows, live, [&](std::size_t, std::size_t u, const std::vector<std::uint32_t>& partner) {
-    s[u].assign(rows[u].size(), 0.0);
-    column[u].resize(rows[u].size());
-    for (std::size_t i = 0; i < rows[u].size(); ++i) column[u][i] = rows[u][i].first;
-    double received = 0, degree = 0, defect = 0, f = 0;
-    for (std::size_t i = 0; i < rows[u].size(); ++i) {
-      const auto [j, k] = rows[u][i];
-      const double g = weight[u] * k;
-      received += g;
-      f += k;
-      if (partner[i] == kNone) continue;
-      s[u][i] = (g + weight[j] * rows[j][partner[i]].second) / 2;  // the same from both sides
-      degree += std::abs(s[u][i]);
-      defect += s[u][i] - g;
-    }
-    row_sum[u] = f;
-    escape[u] = weight[u] - received;
-    diagonal[u] = degree + std::abs(escape[u]);
-    d[u] = defect;
-  });
+  if (report.entries_added > 0)
+    sweep_partners(rows, live, [&](std::size_t, std::size_t u, const std::vector<std::uint32_t>& partner) { fill(u, partner); });
   for (std::size_t u = 0; u < n; ++u) {
     if (!live(u)) continue;
     ++report.unknowns;
