@@ -2,10 +2,6 @@
 
 #include <CLI/CLI.hpp>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
 #include <exception>
 #include <iostream>
 #include <string>
@@ -17,29 +13,13 @@
 #include "cli/grid_command.hpp"
 #include "cli/illuminance_command.hpp"
 #include "cli/mpi_shards.hpp"
+#include "cli/process_memory.hpp"
 #include "cli/sun_command.hpp"
 #include "geometry/error.hpp"
 
-namespace {
-
-// glibc hands allocations above a threshold to mmap and gives each back to the system when it is
-// freed, and raises that threshold only after freeing one: the reflected components allocate
-// blocks of 1–30 MB again and again (an annual run's matrices per block of hours, the rows of K),
-// so whether each is page-faulted in afresh (a few µs a page on this VM) depended on what had been
-// freed before. Measured on the office's 300-sensor annual run with reflections: the hourly part
-// 11.8 s or 20.2 s (6.3 s of system time) by that alone. Up to glibc's largest threshold (32 MB
-// on 64-bit) they come from the heap, and the heap is not trimmed back while the run lasts.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  daylit::cli::use_transparent_huge_pages(argv);
+  daylit::cli::keep_freed_memory();
   // Under mpirun every rank runs main; without MPI (or without mpirun) there is one rank.
   namespace mpi = daylit::cli::mpi;
   const mpi::Session session(argc, argv);
