@@ -6,7 +6,7 @@
 namespace daylit {
 
 RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
-                                  const std::vector<double>& source, int max_sweeps) {
+                                  const std::vector<double>& source, int max_sweeps, double over_relaxation) {
   RadiositySolution s;
   s.exitance = source;
   const std::size_t n = rows.size();
@@ -15,7 +15,8 @@ RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const s
     for (std::size_t i = 0; i < n; ++i) {
       double e = 0;
       for (const auto& [j, k] : rows[i]) e += k * s.exitance[j];
-      const double m = source[i] + reflectance[i] * e;
+      const double gauss_seidel = source[i] + reflectance[i] * e;
+      const double m = over_relaxation == 1.0 ? gauss_seidel : s.exitance[i] + over_relaxation * (gauss_seidel - s.exitance[i]);
       change = std::max(change, std::abs(m - s.exitance[i]));
       size = std::max(size, std::abs(m));
       s.exitance[i] = m;

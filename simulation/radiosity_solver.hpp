@@ -22,7 +22,19 @@ struct RadiositySolution {
 // max_i ρ_i Σ_j |K_ij| per sweep, below 1 for ρ < 1 and rows that are form factors (Σ_j K_ij ≤ 1,
 // plus the roundoff of the linear basis' signed coefficients), so it converges for any
 // reflectance below 1.
+//
+// `over_relaxation` ω ≠ 1: successive over-relaxation, M_i ← M_i + ω (GS value − M_i), for a
+// reciprocal transport only (make_reciprocal: w_i K_ij = w_j K_ji). Scaled row by row by w_i/ρ_i
+// (which leaves the sweeps' values as they are), the rows of ρ > 0 are then A M = W S/ρ with
+// A = W/ρ − G, G symmetric (rows of ρ = 0 are M_i = S_i, which the sweeps keep from the start).
+// For a symmetric A with a positive diagonal, Gauss–Seidel converges exactly where A is positive
+// definite, and then SOR converges for every 0 < ω < 2 (the Ostrowski–Reich theorem; Saad,
+// Iterative Methods for Sparse Linear Systems, 2nd ed., §4.2): over-relaxing asks nothing that
+// Gauss–Seidel did not. The best ω depends on the spectrum; 1.1 measured: 23 → 17 sweeps on the
+// room sample and 23 → 16 on the office at their defaults (1.05: 19, 1.15: 19, 1.2: 22 on the
+// room), the results within 2e-14.
 RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
-                                  const std::vector<double>& source, int max_sweeps = 100000);
+                                  const std::vector<double>& source, int max_sweeps = 100000,
+                                  double over_relaxation = 1.0);
 
 }  // namespace daylit

@@ -1250,7 +1250,10 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
     out.reciprocity = make_reciprocal(k_rows, weight, keep != nullptr ? &keep->collocated : nullptr);
     result.stages.push_back({name + ": reciprocity", lap(clock)});
   }
-  RadiositySolution sol = solve_radiosity(k_rows, rho, source);
+  // Over-relaxed where the transport is reciprocal, which is what makes that converge
+  // (radiosity_solver.hpp).
+  constexpr double kOverRelaxation = 1.1;
+  RadiositySolution sol = solve_radiosity(k_rows, rho, source, 100000, reciprocal ? kOverRelaxation : 1.0);
   result.stages.push_back({name + ": solve", lap(clock)});
   if (!sol.converged)
     throw Error("the radiosity solution did not converge (" + std::to_string(sol.sweeps) +
