@@ -6,9 +6,11 @@
 namespace daylit {
 
 RadiositySolution solve_radiosity(const std::vector<TransportRow>& rows, const std::vector<double>& reflectance,
-                                  const std::vector<double>& source, int max_sweeps, double over_relaxation) {
+                                  const std::vector<double>& source, const SweepOptions& options) {
+  const int max_sweeps = options.max_sweeps;
+  const double over_relaxation = options.over_relaxation;
   RadiositySolution s;
-  s.exitance = source;
+  s.exitance = options.start.size() == source.size() ? options.start : source;
   const std::size_t n = rows.size();
   for (s.sweeps = 1; s.sweeps <= max_sweeps; ++s.sweeps) {
     double change = 0, size = 0;

@@ -1220,10 +1220,39 @@ double lap(std::chrono::steady_clock::time_point& start) {
   return s;
 }
 
+// The solution of a mesh carried to its refinement, where the refinement's sweeps start: an
+// element not split keeps its nodes and their values; a split element's children take its linear
+// exitance at their nodes (Σ_k φ_k M_k). It differs from the refined solution by the mesh's own
+// error, a percent or less, where the source differs from it by the interreflections, tens of
+// percent; the sweeps run to roundoff all the same, so that saves about two of them (measured:
+// the room sample's two rounds 17 → 15 sweeps each, the office's last 16 → 15).
+std::vector<double> refined_start(const RadiosityMesh& before, const std::vector<double>& exitance,
+                                  const RadiosityMesh& mesh, const std::vector<std::size_t>& parent,
+                                  const std::vector<bool>& split) {
+  std::vector<double> m(6 * mesh.elements.size(), 0.0);
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::size_t p = parent[e];
+    const RadiosityElement& from = before.elements[p];
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < 3; ++k) {
+        if (!split[p]) {
+          m[unknown(e, side, k)] = exitance[unknown(p, side, k)];
+          continue;
+        }
+        double value = 0;
+        for (int j = 0; j < 3; ++j) value += from.basis(j, mesh.elements[e].nodes[k]) * exitance[unknown(p, side, j)];
+        m[unknown(e, side, k)] = value;
+      }
+  }
+  return m;
+}
+
 // `name`: the mesh's, for the stages' times ("coarse mesh", "round 0"). `earlier`: node_rows'.
-// `keep`, where given: the rows, for the next refinement's node_rows.
+// `keep`, where given: the rows, for the next refinement's node_rows. `start`: where the sweeps
+// start (refined_start), else the source.
 MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& result, const ProgressCallback& progress,
-                        const std::string& name, EarlierRows* earlier = nullptr, KeptRows* keep = nullptr) {
+                        const std::string& name, EarlierRows* earlier = nullptr, KeptRows* keep = nullptr,
+                        std::vector<double> start = {}) {
   auto clock = std::chrono::steady_clock::now();
   const RadiosityMesh& mesh = t.mesh();
   const std::size_t nu = t.unknowns();
@@ -1253,7 +1282,10 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
   // Over-relaxed where the transport is reciprocal, which is what makes that converge
   // (radiosity_solver.hpp).
   constexpr double kOverRelaxation = 1.1;
-  RadiositySolution sol = solve_radiosity(k_rows, rho, source, 100000, reciprocal ? kOverRelaxation : 1.0);
+  SweepOptions sweeps;
+  sweeps.over_relaxation = reciprocal ? kOverRelaxation : 1.0;
+  sweeps.start = std::move(start);
+  RadiositySolution sol = solve_radiosity(k_rows, rho, source, sweeps);
   result.stages.push_back({name + ": solve", lap(clock)});
   if (!sol.converged)
     throw Error("the radiosity solution did not converge (" + std::to_string(sol.sweeps) +
@@ -1671,7 +1703,8 @@ ReflectionResult reflected_components(const Scene& scene, const std::vector<doub
     const bool more = round < opt.max_refinements;
     KeptRows kept_rows;
     MeshSolution fine = solve_mesh(t, opt.reciprocal_transport, result, rows_stage(name), round_name, earlier.get(),
-                                   more ? &kept_rows : nullptr);
+                                   more ? &kept_rows : nullptr,
+                                   refined_start(coarse_mesh, coarse.exitance, t.mesh(), parent, split));
     clock = std::chrono::steady_clock::now();
     std::size_t sensors = 0;
     for (const SensorGrid* g : grids) sensors += g->sensors.size();
