@@ -1,7 +1,7 @@
 #pragma once
 // How the daylit process asks glibc for memory, set once as main begins: the reflected components
 // fill hundreds of MB of rows and matrices, page by page, and on a virtual machine each page's
-// first touch costs a few µs (README, "Performance").
+// first touch costs a few µs.
 
 namespace daylit::cli {
 
