@@ -157,15 +157,16 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       "directly through a box around the model); transport exact per element (Chen-Arvo linear luminaire over the "
       "exactly visible part, occluders cut to the luminaire's side of its plane); ERC: far ground and surfaces seen "
       "through apertures (weighted by their transmittance; glass: T at the element's centre direction), IRC: "
-      "surfaces seen inside; Gauss-Seidel to roundoff";
+      "surfaces seen inside; Gauss-Seidel sweeps to roundoff, over-relaxed where the transport is reciprocal (see "
+      "solver), each refinement's starting from the solution of the mesh it refines";
   j["mesh"] = {{"elements", r.elements}, {"unknowns", r.unknowns}, {"max_level", r.max_level},
                {"refinement_rounds", r.refinements}, {"element_size", r.element_size},
                {"element_size_is", opt.element_size > 0 ? "as given (--element-size)"
                                                         : "automatic: a fifth of the longest side of the box around a grid's sensors, or of half the room's span around them where that is longer (the median over the grids)"},
                {"grading", opt.grading},
                {"max_error_percent_by_round", r.error_by_round}};
-  j["solver"] = {{"sweeps", r.sweeps}, {"last_relative_change", r.solver_change},
-                 {"reflectance_max", r.reflectance_max}};
+  j["solver"] = {{"sweeps", r.sweeps}, {"over_relaxation", r.over_relaxation},
+                 {"last_relative_change", r.solver_change}, {"reflectance_max", r.reflectance_max}};
   j["error"] = {
       {"tolerance_percent", opt.tolerance},
       {"max_estimate_percent", r.max_error_percent},

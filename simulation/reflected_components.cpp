@@ -1285,6 +1285,7 @@ MeshSolution solve_mesh(const Transport& t, bool reciprocal, ReflectionResult& r
   SweepOptions sweeps;
   sweeps.over_relaxation = reciprocal ? kOverRelaxation : 1.0;
   sweeps.start = std::move(start);
+  result.over_relaxation = sweeps.over_relaxation;
   RadiositySolution sol = solve_radiosity(k_rows, rho, source, sweeps);
   result.stages.push_back({name + ": solve", lap(clock)});
   if (!sol.converged)

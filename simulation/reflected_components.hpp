@@ -125,6 +125,7 @@ struct ReflectionResult {
   std::size_t elements = 0, unknowns = 0;
   int max_level = 0, refinements = 0;
   int sweeps = 0;
+  double over_relaxation = 1;  // of the sweeps (radiosity_solver.hpp): above 1 with the reciprocal transport
   double solver_change = 0;
   double reflectance_max = 0;
   double max_error_percent = 0;  // over the sensors
