@@ -13,8 +13,8 @@ namespace daylit::cli {
 // and has no call that sets this one later, hence the second start (about 15 ms), which must come
 // before anything else: before MPI starts and before any thread. Where the program cannot be run
 // again, it goes on as it is. Measured (paired, whole process, 2 threads): the room sample's
-// whole DF at 1 % of its IRC 2.53 → 2.27 s, the office's 2.3 → 2.0 s of system and user time
-// together per 14 s; the peak memory 5 % higher.
+// whole DF at 1 % of its IRC 2.53 → 2.27 s wall (CPU 4.60 → 4.11 s), the office's df with
+// every component 14.3 → 13.4 s wall (CPU 27.1 → 25.5 s); the office's peak memory 5 % higher.
 void use_transparent_huge_pages(char** argv);
 
 // glibc hands allocations above a threshold to mmap and gives each back to the system when it is
