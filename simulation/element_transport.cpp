@@ -33,15 +33,6 @@ std::array<double, 3> coefficients_from(const RadiosityElement& element, const V
   return c;
 }
 
-// A sliver (collinear vertices, as polygons with points along their edges leave in the fan
-// triangulation): its area is below 1e-12 of its longest edge squared, its basis gradients
-// (∝ 1/area) are meaningless, and what it can give is below 1e-12 of its neighbours'. It gives 0.
-bool degenerate(const RadiosityElement& e) {
-  const auto& v = e.vertices;
-  const double longest = std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
-  return !(e.area > 1e-12 * longest * longest);
-}
-
 // The accuracy the moments need against the element's irradiance (element_irradiance_coefficients).
 double moment_tolerance(const RadiosityElement& element, double l0, double h) {
   return std::max(kTransportTolerance * std::abs(l0), 1e-13) * std::sqrt(element.area) / h;
@@ -101,7 +92,7 @@ SphericalRegion element_region(const SphericalRegion& surface_region, bool unobs
 std::array<double, 3> element_irradiance_coefficients(const SphericalRegion& part, const RadiosityElement& element,
                                                       const Vec3& x, const Vec3& n) {
   std::array<double, 3> c{0, 0, 0};
-  if (part.empty() || degenerate(element)) return c;
+  if (part.empty() || element.sliver) return c;
   const double side = dot(element.normal, element.vertices[0] - x);
   const Vec3 w = side > 0 ? element.normal : -1.0 * element.normal;
   const double h = std::abs(side);
@@ -149,7 +140,7 @@ void unobstructed_surface_coefficients(const RadiosityMesh& mesh, std::size_t su
     const std::size_t e = surf.elements[i];
     const RadiosityElement& el = mesh.elements[e];
     const double side = dot(el.normal, el.vertices[0] - x);
-    bool separate = side == 0 || (side > 0) != (facing > 0) || degenerate(el);
+    bool separate = side == 0 || (side > 0) != (facing > 0) || el.sliver;
     for (const Vec3& v : el.vertices) separate = separate || dot(n, v - x) < 0;
     std::array<real::Tracked<double>, 3> sum{};
     if (!separate) {

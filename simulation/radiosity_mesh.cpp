@@ -10,18 +10,6 @@
 
 namespace daylit {
 
-double RadiosityElement::barycentric(int k, const Vec3& y) const noexcept {
-  // λ_k = ((v_{k+2} − v_{k+1}) × (y − v_{k+1}))·N / (2A) = (N × (v_{k+2} − v_{k+1}))·(y − v_{k+1}) / (2A)
-  const Vec3& a = vertices[(k + 1) % 3];
-  return dot(barycentric_gradient(k), y - a);
-}
-
-Vec3 RadiosityElement::barycentric_gradient(int k) const noexcept {
-  const Vec3& a = vertices[(k + 1) % 3];
-  const Vec3& b = vertices[(k + 2) % 3];
-  return cross(normal, b - a) / (2 * area);
-}
-
 RadiosityElement make_element(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& normal, std::size_t surface,
                               int level) {
   RadiosityElement e;
@@ -34,6 +22,15 @@ RadiosityElement make_element(const Vec3& a, const Vec3& b, const Vec3& c, const
   else
     e.vertices = {a, c, b};
   e.area = 0.5 * norm(twice);
+  for (int k = 0; k < 3; ++k) {
+    // λ_k = ((v_{k+2} − v_{k+1}) × (y − v_{k+1}))·N / (2A) = (N × (v_{k+2} − v_{k+1}))·(y − v_{k+1}) / (2A)
+    const Vec3& from = e.vertices[std::size_t((k + 1) % 3)];
+    const Vec3& to = e.vertices[std::size_t((k + 2) % 3)];
+    e.lambda_gradients[std::size_t(k)] = cross(normal, to - from) / (2 * e.area);
+  }
+  const auto& v = e.vertices;
+  const double longest = std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
+  e.sliver = !(e.area > 1e-12 * longest * longest);
   for (int k = 0; k < 3; ++k) {
     const double w[3] = {k == 0 ? 2.0 / 3 : 1.0 / 6, k == 1 ? 2.0 / 3 : 1.0 / 6, k == 2 ? 2.0 / 3 : 1.0 / 6};
     e.nodes[k] = e.point(w[0], w[1], w[2]);

@@ -28,10 +28,20 @@ struct RadiosityElement {
   int level = 0;            // times split from the surface's first triangulation
   double area = 0;
   std::array<Vec3, 3> nodes;
+  // ∇λ_k = N × (v_{k+2} − v_{k+1}) / (2A), constant over the element: kept, since the transport
+  // asks for it at every receiver (make_element).
+  std::array<Vec3, 3> lambda_gradients;
+  // A sliver: collinear vertices to roundoff (polygons with points along their edges leave them
+  // in the fan triangulation), area below 1e-12 of the longest edge squared. Its basis gradients
+  // (∝ 1/A) mean nothing and what it could give is below 1e-12 of its neighbours': the transport
+  // takes it as giving nothing.
+  bool sliver = false;
 
   // λ_k at y (y's foot on the plane; any y), and its constant gradient in the plane.
-  double barycentric(int k, const Vec3& y) const noexcept;
-  Vec3 barycentric_gradient(int k) const noexcept;
+  double barycentric(int k, const Vec3& y) const noexcept {
+    return dot(lambda_gradients[std::size_t(k)], y - vertices[std::size_t((k + 1) % 3)]);
+  }
+  const Vec3& barycentric_gradient(int k) const noexcept { return lambda_gradients[std::size_t(k)]; }
   // φ_k(y) = 2 λ_k(y) − 1/3 and ∇φ_k.
   double basis(int k, const Vec3& y) const noexcept { return 2 * barycentric(k, y) - 1.0 / 3; }
   Vec3 basis_gradient(int k) const noexcept { return 2.0 * barycentric_gradient(k); }
