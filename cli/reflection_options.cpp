@@ -218,6 +218,11 @@ nlohmann::json reflection_summary(const ReflectionResult& r, const std::map<std:
       {"direct_sky_at_sensors", "sensors see the sky through the apertures only (SC); a sensor outside the model "
                                 "sees no sky directly"},
       {"receivers_seeing_no_sky_directly", r.receivers_direct_empty},
+      {"receivers_enclosed", r.receivers_direct_enclosed},
+      {"receivers_enclosed_why", "of those seeing no sky directly, the ones inside a closed surface of the model "
+                                 "(polygons whose edges pair up, e.g. a room's walls, floor, ceiling and panes): known "
+                                 "by the parity of an exact ray crossing count, so their six sky-box visibility queries "
+                                 "were left out"},
       {"receivers", r.receivers_direct},
       {"surface_sides_solved", r.sides_solved},
       {"surface_sides_left_out", r.sides_left_out},

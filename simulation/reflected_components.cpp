@@ -17,6 +17,7 @@
 
 #include "geometry/box.hpp"
 #include "geometry/sky_box.hpp"
+#include "geometry/closed_shells.hpp"
 #include "geometry/ray_crossing.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
@@ -266,9 +267,14 @@ class Transport {
   struct Direct {
     double total = 0, ground = 0;
     bool empty = true;
+    bool enclosed = false;  // empty, known from the closed shells without the box's queries
   };
   Direct direct(const Vec3& x, const Vec3& n, std::size_t own, VisibilityCounters& c) const {
     Direct out;
+    if (closed_.encloses(x, n, own)) {
+      out.enclosed = true;
+      return out;
+    }
     VisibilityOptions full, half;
     full.clip_to_horizon = false;
     full.receiver_occluder = half.receiver_occluder = own;  // the box's occluders start with the scene's
@@ -337,7 +343,7 @@ class Transport {
         }
       }
     }
-    if (with_direct)
+    if (with_direct && !closed_.encloses(x, n, own))
       for (std::size_t f = 0; f < sky_box_->aperture_count(); ++f) {
         SphericalRegion all = sky_box_->visible_region(x, n, f, c, full);
         if (!all.empty()) add_view(std::move(all), above_horizon(*sky_box_, x, n, f, c, half), nullptr, -1, nullptr, {}, 1.0);
@@ -919,6 +925,8 @@ class Transport {
   void build_sky_box(const Box& all) {
     sky_box_ = std::make_unique<VisibilityEngine>(sky_box_scene(scene_, all), options_.mode, engine_.order(),
                                                   AperturesAre::independent);
+    // The sky box's occluders are polygons_ in its order, so `own` names the same polygon in both.
+    closed_ = ClosedShells(polygons_);
   }
 
   const Scene& scene_;
@@ -938,6 +946,9 @@ class Transport {
   std::vector<Vec3> pane_normals_, pane_points_;          // per aperture: its plane
   std::vector<Polygon> polygons_;  // per surface's `occluder`: the opaque polygons, then the apertures' panes
   std::unique_ptr<VisibilityEngine> sky_box_;
+  // The polygons that close (the room's walls, floor, ceiling and panes): a receiver they enclose
+  // sees nothing of the sky box, known without its six queries (geometry/closed_shells.hpp).
+  ClosedShells closed_;
   std::vector<ConvexPiece> sun_pieces_;     // with options.sun: every polygon_'s convex pieces
   std::unique_ptr<SunlitElements> sunlit_;  // with options.sun
   std::vector<std::array<bool, 2>> live_;  // per surface and side
@@ -957,6 +968,7 @@ struct ReceiverRow {
   double first_bounce = 0;
   TransportRow row;
   bool direct_empty = true;
+  bool direct_enclosed = false;
 };
 
 // `scratch`: where the row is gathered (a thread's, reused), so that the row kept is allocated
@@ -970,6 +982,7 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
   const auto d = t.direct(x, n, own, counters);
   r.first_bounce = a.sky + a.ground + d.total;
   r.direct_empty = d.empty;
+  r.direct_enclosed = d.enclosed;
   scratch.clear();
   t.transport(t.mesh(), x, n, own_surface, counters,
               [&](std::size_t e, int side, const std::array<double, 3>& c, bool, double) { add_coefficients(scratch, e, side, c); });
@@ -979,7 +992,7 @@ ReceiverRow receiver_row(const Transport& t, const Vec3& x, const Vec3& n, std::
 
 struct Local {
   VisibilityCounters counters;
-  std::size_t direct_empty = 0, direct = 0;
+  std::size_t direct_empty = 0, direct_enclosed = 0, direct = 0;
   TransportRow scratch;
 };
 
@@ -1056,6 +1069,7 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
         const ReceiverRow& before = earlier->kept.rows[u_before];
         r.first_bounce = before.first_bounce;
         r.direct_empty = before.direct_empty;
+        r.direct_enclosed = before.direct_enclosed;
         TransportRow& row = local.scratch;
         row.clear();
         for (std::size_t i = 0; i < before.row.size(); ++i) {
@@ -1076,14 +1090,16 @@ std::vector<ReceiverRow> node_rows(const Transport& t, ReflectionResult& result,
         r.first_bounce += sun[std::size_t(k)];
       }
       local.direct_empty += r.direct_empty;
+      local.direct_enclosed += r.direct_enclosed;
       ++local.direct;
       rows[unknown(e, side, k)] = std::move(r);
     }
   });
-  result.receivers_direct_empty = result.receivers_direct = 0;
+  result.receivers_direct_empty = result.receivers_direct_enclosed = result.receivers_direct = 0;
   for (const auto& l : locals) {
     result.counters += l.counters;
     result.receivers_direct_empty += l.direct_empty;
+    result.receivers_direct_enclosed += l.direct_enclosed;
     result.receivers_direct += l.direct;
   }
   return rows;

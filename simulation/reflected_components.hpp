@@ -130,6 +130,8 @@ struct ReflectionResult {
   double reflectance_max = 0;
   double max_error_percent = 0;  // over the sensors
   std::size_t receivers_direct_empty = 0, receivers_direct = 0;
+  // Of the empty ones, those a closed surface of the model encloses (geometry/closed_shells.hpp).
+  std::size_t receivers_direct_enclosed = 0;
   // Surface sides (two per reflecting surface) solved, and left out because no light from them
   // can reach a sensor, directly or by reflection (the outside of a room's walls).
   std::size_t sides_solved = 0, sides_left_out = 0;
