@@ -42,6 +42,7 @@
 #include <type_traits>
 
 #include "illumination/gauss_legendre.hpp"
+#include "illumination/log_cosine_integrand.hpp"
 #include "illumination/rational_edge.hpp"
 
 namespace daylit::rational {
@@ -89,21 +90,32 @@ std::optional<Tracked<R>> log_cosine_arc_integral(const WFrameArc<R>& e) {
   while (n <= kMaxNodes && a < rules.min_a[n]) ++n;
   if (n > kMaxNodes) return std::nullopt;
   const R c2 = e.c * e.c, kappa = e.kappa(), kappa2 = kappa * kappa;
-  auto f = [&](R t) {
-    const R q = kappa2 + t * t;
-    return q == 0 ? R(-0.5) / c2 : -real::log1p(q / c2) / (2 * q);
-  };
-  R sum = n % 2 ? rules.w[n][n / 2] * f(mid) : R(0);
+  // The nodes in pairs mid ± δ_i, then mid where n is odd; their values f(t) all at once in double
+  // (log_cosine_integrand.hpp: the vector log1p), one by one in long double.
+  std::array<R, kMaxNodes + 3> t{}, f{};
   for (int i = 0; i < n / 2; ++i) {
     const R delta = h * rules.x[n][i];
-    sum += rules.w[n][i] * (f(mid + delta) + f(mid - delta));
+    t[std::size_t(2 * i)] = mid + delta;
+    t[std::size_t(2 * i + 1)] = mid - delta;
   }
+  if (n % 2) t[std::size_t(n - 1)] = mid;
+  if constexpr (std::is_same_v<R, double>) {
+    log_cosine_integrand(t.data(), std::size_t(n), kappa2, c2, f.data());
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const R q = kappa2 + t[std::size_t(i)] * t[std::size_t(i)];
+      f[std::size_t(i)] = q == 0 ? R(-0.5) / c2 : -real::log1p(q / c2) / (2 * q);
+    }
+  }
+  R sum = n % 2 ? rules.w[n][n / 2] * f[std::size_t(n - 1)] : R(0);
+  for (int i = 0; i < n / 2; ++i) sum += rules.w[n][i] * (f[std::size_t(2 * i)] + f[std::size_t(2 * i + 1)]);
   const R value = h * sum;
   // Every term has f's sign, so the sum's rounding is a few ulp of itself. The nodes' values carry
-  // a few ulp of their own, and their positions an ulp of t, which moves f by at most 2 ulp
-  // relative (|t f′/f| ≤ 2: log1p(x)/x has logarithmic derivative between −1/x and 0); h carries
-  // an ulp of each cosine, relative 1/cos = √(1 + t²) ≤ 1 + |t| ulp: hence 3 + reach.
-  return Tracked<R>{value, real::abs(value) * (3 + reach)};
+  // a few ulp of their own (the vector log1p up to 4, where the scalar one is within 1), and their
+  // positions an ulp of t, which moves f by at most 2 ulp relative (|t f′/f| ≤ 2: log1p(x)/x has
+  // logarithmic derivative between −1/x and 0); h carries an ulp of each cosine, relative
+  // 1/cos = √(1 + t²) ≤ 1 + |t| ulp: hence 6 + reach.
+  return Tracked<R>{value, real::abs(value) * (6 + reach)};
 }
 
 }  // namespace daylit::rational

@@ -1,9 +1,10 @@
 #pragma once
 // glibc's vector math (libmvec) for the loops that evaluate one function at many points: the
 // circumsolar sum and the Perez normalisation's inner sum (sky/), the hat functions' directions
-// (simulation/direction_angles.cpp). Only a source file built with DAYLIT_LIBMVEC (GCC on x86-64,
-// where glibc ships libmvec; each room's CMakeLists.txt sets it per file, with -fno-math-errno and
-// -fopenmp-simd) sees the declarations; elsewhere the loops stay scalar.
+// (simulation/direction_angles.cpp), the nodes of the η quadrature
+// (illumination/log_cosine_integrand.cpp). Only a source file built with DAYLIT_LIBMVEC (GCC on
+// x86-64, where glibc ships libmvec; each room's CMakeLists.txt sets it per file, with
+// -fno-math-errno and -fopenmp-simd) sees the declarations; elsewhere the loops stay scalar.
 //
 // glibc declares these vector variants only under -ffast-math (bits/math-vector.h); declaring
 // them here lets an `omp simd` loop use them without fast-math's licence to reorder everything
@@ -22,6 +23,7 @@ __attribute__((simd("notinbranch"))) double cos(double) noexcept;
 __attribute__((simd("notinbranch"))) double acos(double) noexcept;
 __attribute__((simd("notinbranch"))) double asin(double) noexcept;
 __attribute__((simd("notinbranch"))) double atan2(double, double) noexcept;
+__attribute__((simd("notinbranch"))) double log1p(double) noexcept;
 }
 #define DAYLIT_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
