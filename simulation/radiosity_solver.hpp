@@ -7,8 +7,20 @@
 
 namespace daylit {
 
-// One row of K: (column, coefficient) pairs; M_i's irradiance is Σ coefficient·M_column.
-using TransportRow = std::vector<std::pair<std::uint32_t, double>>;
+// One entry of a row of K, packed: 12 bytes where std::pair<std::uint32_t, double> pads to 16. A
+// mesh's rows are hundreds of MB, and the reciprocity and the sweeps read them whole, so their
+// size is time (and every page of them is faulted in, zeroed, once); x86-64 reads a double at any
+// address.
+struct [[gnu::packed]] TransportEntry {
+  std::uint32_t first;  // the column
+  double second;        // the coefficient
+  friend bool operator==(const TransportEntry& a, const TransportEntry& b) {
+    return a.first == b.first && a.second == b.second;
+  }
+};
+static_assert(sizeof(TransportEntry) == 12);
+// One row of K: (column, coefficient) entries; M_i's irradiance is Σ coefficient·M_column.
+using TransportRow = std::vector<TransportEntry>;
 
 struct RadiositySolution {
   std::vector<double> exitance;

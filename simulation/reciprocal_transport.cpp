@@ -219,7 +219,7 @@ ReciprocityReport make_reciprocal(std::vector<TransportRow>& rows, const std::ve
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(partner_chunks(n));
   sweep_partners(rows, live, [&](std::size_t chunk, std::size_t u, const std::vector<std::uint32_t>& partner) {
     for (std::size_t i = 0; i < partner.size(); ++i)
-      if (partner[i] == kNone && live(rows[u][i].first)) found[chunk].emplace_back(rows[u][i].first, std::uint32_t(u));
+      if (partner[i] == kNone && live(rows[u][i].first)) found[chunk].emplace_back(std::uint32_t(rows[u][i].first), std::uint32_t(u));
     fill(u, partner);
   });
   std::vector<std::vector<std::uint32_t>> missing(n);

@@ -57,7 +57,7 @@ System random_system(std::size_t n, std::uint64_t seed) {
   }
   // One-sided pairs: drop some (j, u) whose (u, j) stays.
   for (std::size_t u = 0; u < n; ++u)
-    for (const auto& [j, k] : std::vector<std::pair<std::uint32_t, double>>(sys.rows[u]))
+    for (const auto& [j, k] : TransportRow(sys.rows[u]))
       if (j > u && rng.uniform() < 0.15)
         std::erase_if(sys.rows[j], [u = u](const auto& e) { return e.first == u; });
   return sys;
@@ -255,7 +255,7 @@ TEST_CASE("reciprocity: no unknowns, and only dead ones, leave the rows as given
   CHECK(dead.unknowns == 0);
   CHECK(dead.entries_added == 0);
   REQUIRE(rows[0].size() == 2);
-  CHECK(rows[0][0] == std::pair<std::uint32_t, double>{0, 0.5});  // sorted, values as given
-  CHECK(rows[0][1] == std::pair<std::uint32_t, double>{1, 0.25});
+  CHECK(rows[0][0] == TransportEntry{0, 0.5});  // sorted, values as given
+  CHECK(rows[0][1] == TransportEntry{1, 0.25});
   CHECK(rows[1] == TransportRow{{0, 0.125}});
 }
