@@ -128,6 +128,7 @@ bool ClosedShells::encloses(const Vec3& x, const Vec3& n, std::size_t own) const
   // A segment from x to beyond every triangle stands for the ray (its direction is q − x exactly;
   // nearly d, which is all the choice of d asked for).
   const Vec3 q = x + 2 * (norm(x - centre_) + reach_) * d;
+  if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return false;
   const Epick::Point_3 px = point3(x), pq = point3(q);
   std::size_t crossings = 0;
   for (const Triangle& t : triangles_) {

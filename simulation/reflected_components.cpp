@@ -16,9 +16,9 @@
 #include <tbb/task_arena.h>
 
 #include "geometry/box.hpp"
-#include "geometry/sky_box.hpp"
 #include "geometry/closed_shells.hpp"
 #include "geometry/ray_crossing.hpp"
+#include "geometry/sky_box.hpp"
 #include "illumination/moments.hpp"
 #include "illumination/orthonormal_basis.hpp"
 #include "simulation/dense_lu.hpp"
