@@ -12,6 +12,10 @@ namespace daylit {
 // size is time (and every page of them is faulted in, zeroed, once); x86-64 reads a double at any
 // address.
 struct [[gnu::packed]] TransportEntry {
+  TransportEntry() = default;
+  // A constructor, not an aggregate: emplace_back(column, coefficient) then compiles where
+  // parenthesised aggregate initialisation does not (clang 14).
+  TransportEntry(std::uint32_t column, double coefficient) : first(column), second(coefficient) {}
   std::uint32_t first;  // the column
   double second;        // the coefficient
   friend bool operator==(const TransportEntry& a, const TransportEntry& b) {
