@@ -10,6 +10,15 @@
 
 namespace daylit {
 
+namespace {
+
+double longest_edge(const RadiosityElement& e) {
+  const auto& v = e.vertices;
+  return std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
+}
+
+}  // namespace
+
 RadiosityElement make_element(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& normal, std::size_t surface,
                               int level) {
   RadiosityElement e;
@@ -28,8 +37,7 @@ RadiosityElement make_element(const Vec3& a, const Vec3& b, const Vec3& c, const
     const Vec3& to = e.vertices[std::size_t((k + 2) % 3)];
     e.lambda_gradients[std::size_t(k)] = cross(normal, to - from) / (2 * e.area);
   }
-  const auto& v = e.vertices;
-  const double longest = std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
+  const double longest = longest_edge(e);
   e.sliver = !(e.area > 1e-12 * longest * longest);
   for (int k = 0; k < 3; ++k) {
     const double w[3] = {k == 0 ? 2.0 / 3 : 1.0 / 6, k == 1 ? 2.0 / 3 : 1.0 / 6, k == 2 ? 2.0 / 3 : 1.0 / 6};
@@ -50,11 +58,6 @@ namespace {
 
 // A size function that asks for less than the input's roundoff cannot loop for ever.
 constexpr int kMaxMeshLevel = 16;
-
-double longest_edge(const RadiosityElement& e) {
-  const auto& v = e.vertices;
-  return std::max({norm(v[1] - v[0]), norm(v[2] - v[1]), norm(v[0] - v[2])});
-}
 
 // The edges of every surface's elements, surface by surface (so that each surface's ids are
 // contiguous), shared where two elements have the same end points.
